@@ -1,0 +1,33 @@
+// The shared mesh model: OpenMesh with double-precision points (never the default float
+// traits), for the reference triangle surface (TriMesh) and for the layout's polygon
+// meshes (PolyMesh), plus small conversions to Eigen.
+#pragma once
+
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace pqlayout {
+
+struct DoubleTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Status);
+  FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge);
+};
+
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
+using VertexHandle = OpenMesh::VertexHandle;
+using FaceHandle = OpenMesh::FaceHandle;
+using EdgeHandle = OpenMesh::EdgeHandle;
+using HalfedgeHandle = OpenMesh::HalfedgeHandle;
+
+inline Eigen::Vector3d ToEigen(const OpenMesh::Vec3d& p) { return {p[0], p[1], p[2]}; }
+inline OpenMesh::Vec3d ToOpenMesh(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+}  // namespace pqlayout

@@ -1,0 +1,158 @@
+#include "geometry/mesh_validation.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace pqlayout {
+namespace {
+
+std::string Str(const Eigen::Vector3d& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+// One side of an edge as seen from a face: the undirected key, the face and whether the
+// face traverses the edge from the smaller to the larger vertex index.
+struct EdgeUse {
+  int lo, hi, face;
+  bool forward;
+  bool operator<(const EdgeUse& o) const { return std::tie(lo, hi, face) < std::tie(o.lo, o.hi, o.face); }
+};
+
+class DisjointSets {
+ public:
+  explicit DisjointSets(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int Find(int x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void Union(int a, int b) { parent_[Find(a)] = Find(b); }
+
+ private:
+  std::vector<int> parent_;
+};
+
+Status CheckPoints(const PolygonSoup& soup) {
+  for (size_t v = 0; v < soup.points.size(); ++v) {
+    if (!soup.points[v].allFinite())
+      return Status::InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate " +
+                                  Str(soup.points[v]));
+  }
+  return Status::Ok();
+}
+
+Status CheckTriangles(const PolygonSoup& soup) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (const auto& p : soup.points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diagonal = (hi - lo).norm();
+  const int nv = static_cast<int>(soup.points.size());
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    const auto& face = soup.faces[f];
+    const std::string name = "face " + std::to_string(f);
+    if (face.size() != 3)
+      return Status::InvalidInput(name + " has " + std::to_string(face.size()) +
+                                  " vertices: the reference surface must be a triangle mesh");
+    for (const int v : face)
+      if (v < 0 || v >= nv) return Status::InvalidInput(name + " references missing vertex " + std::to_string(v));
+    if (face[0] == face[1] || face[1] == face[2] || face[2] == face[0])
+      return Status::InvalidInput(name + " is degenerate: it uses a vertex twice");
+    const Eigen::Vector3d& p0 = soup.points[face[0]];
+    const double area = 0.5 * (soup.points[face[1]] - p0).cross(soup.points[face[2]] - p0).norm();
+    if (!(area > 1e-12 * diagonal * diagonal))
+      return Status::InvalidInput(name + " is degenerate (zero area): vertices " +
+                                  std::to_string(face[0]) + ", " + std::to_string(face[1]) + ", " +
+                                  std::to_string(face[2]));
+  }
+  return Status::Ok();
+}
+
+Status CheckDuplicateFaces(const PolygonSoup& soup) {
+  std::vector<std::pair<std::array<int, 3>, int>> sorted(soup.faces.size());
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    std::array<int, 3> key{soup.faces[f][0], soup.faces[f][1], soup.faces[f][2]};
+    std::sort(key.begin(), key.end());
+    sorted[f] = {key, static_cast<int>(f)};
+  }
+  std::sort(sorted.begin(), sorted.end());
+  for (size_t i = 1; i < sorted.size(); ++i) {
+    if (sorted[i].first == sorted[i - 1].first)
+      return Status::InvalidInput("faces " + std::to_string(sorted[i - 1].second) + " and " +
+                                  std::to_string(sorted[i].second) + " are duplicates");
+  }
+  return Status::Ok();
+}
+
+// Non-manifold edges, orientation, non-manifold vertices and the boundary, from the sorted
+// list of edge uses.
+Status CheckManifold(const PolygonSoup& soup) {
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * soup.faces.size());
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = soup.faces[f][k], b = soup.faces[f][(k + 1) % 3];
+      uses.push_back({std::min(a, b), std::max(a, b), static_cast<int>(f), a < b});
+    }
+  }
+  std::sort(uses.begin(), uses.end());
+  // Corners 3f+k are joined across every interior edge; a vertex whose corners fall into
+  // more than one set has more than one fan of triangles: a non-manifold vertex.
+  DisjointSets corners(static_cast<int>(3 * soup.faces.size()));
+  auto corner = [&](int face, int vertex) {
+    const auto& fv = soup.faces[face];
+    return 3 * face + static_cast<int>(std::find(fv.begin(), fv.end(), vertex) - fv.begin());
+  };
+  bool has_boundary = false;
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
+    const std::string edge = "edge (" + std::to_string(uses[i].lo) + ", " + std::to_string(uses[i].hi) + ")";
+    if (j - i > 2) {
+      return Status::InvalidInput("non-manifold " + edge + " is shared by " + std::to_string(j - i) +
+                                  " faces (" + std::to_string(uses[i].face) + ", " +
+                                  std::to_string(uses[i + 1].face) + ", " + std::to_string(uses[i + 2].face) + ")");
+    }
+    if (j - i == 1) has_boundary = true;
+    if (j - i == 2) {
+      if (uses[i].forward == uses[i + 1].forward)
+        return Status::InvalidInput("faces " + std::to_string(uses[i].face) + " and " +
+                                    std::to_string(uses[i + 1].face) + " have opposite orientations across " +
+                                    edge + " (inconsistently oriented or non-orientable mesh)");
+      for (const int v : {uses[i].lo, uses[i].hi})
+        corners.Union(corner(uses[i].face, v), corner(uses[i + 1].face, v));
+    }
+    i = j;
+  }
+  std::vector<int> fan_of_vertex(soup.points.size(), -1);
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int v = soup.faces[f][k];
+      const int fan = corners.Find(static_cast<int>(3 * f + k));
+      if (fan_of_vertex[v] < 0) fan_of_vertex[v] = fan;
+      if (fan_of_vertex[v] != fan)
+        return Status::InvalidInput("non-manifold vertex " + std::to_string(v) +
+                                    ": its triangles form more than one fan");
+    }
+  }
+  if (!has_boundary)
+    return Status::InvalidInput("the mesh is closed (it has no boundary), so it cannot be supported");
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ValidateSurfaceSoup(const PolygonSoup& soup) {
+  if (soup.faces.empty()) return Status::InvalidInput("the mesh is empty (no faces)");
+  PQ_RETURN_IF_ERROR(CheckPoints(soup));
+  PQ_RETURN_IF_ERROR(CheckTriangles(soup));
+  PQ_RETURN_IF_ERROR(CheckDuplicateFaces(soup));
+  return CheckManifold(soup);
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,87 @@
+// SurfaceModel: the reference triangle surface shared by every stage, with its derived
+// quantities computed once at construction (face areas and unit normals, lumped vertex
+// areas, boundary loops with inner/outer classification). Positions never change after
+// construction; stages attach their per-element results as named OpenMesh properties
+// (see VertexField / FaceField), which the field writers export by name.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <OpenMesh/Core/Utils/PropertyManager.hh>
+
+#include "geometry/mesh.h"
+
+namespace pqlayout {
+
+struct BoundaryLoop {
+  std::vector<VertexHandle> vertices;  // in order along the boundary halfedges
+  double length = 0.0;                 // metres
+  Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();  // ½ Σ p_i × p_{i+1}
+  bool is_outer = false;  // the loop with the largest |vector area| is the outer one
+};
+
+class SurfaceModel {
+ public:
+  // Takes a valid triangle mesh (see ValidateSurfaceMesh); computes all cached quantities.
+  explicit SurfaceModel(TriMesh mesh);
+
+  const TriMesh& mesh() const { return mesh_; }
+  // Non-const access is for attaching named per-element fields only; never move vertices.
+  TriMesh& mesh() { return mesh_; }
+
+  int num_vertices() const { return static_cast<int>(mesh_.n_vertices()); }
+  int num_faces() const { return static_cast<int>(mesh_.n_faces()); }
+
+  Eigen::Vector3d position(VertexHandle v) const { return ToEigen(mesh_.point(v)); }
+  Eigen::Vector3d position(int v) const { return position(VertexHandle(v)); }
+  // The three vertex indices of face f in its orientation.
+  std::array<int, 3> face_vertices(int f) const { return face_vertices_[f]; }
+
+  double face_area(int f) const { return face_area_[f]; }
+  const Eigen::Vector3d& face_normal(int f) const { return face_normal_[f]; }
+  // Lumped (barycentric) area: one third of the areas of the triangles at vertex v.
+  double vertex_area(int v) const { return vertex_area_[v]; }
+  double total_area() const { return total_area_; }
+
+  const std::vector<BoundaryLoop>& boundary_loops() const { return loops_; }
+  // Index into boundary_loops() of the loop through v, or -1 for an interior vertex.
+  int boundary_loop_of(int v) const { return vertex_loop_[v]; }
+  bool is_boundary(int v) const { return vertex_loop_[v] >= 0; }
+  int num_boundary_vertices() const;
+
+  // Boundary vertices where the boundary turns by more than min_turning_angle (radians),
+  // e.g. the four corners of the Great Court rectangle.
+  std::vector<int> BoundaryCorners(double min_turning_angle) const;
+
+  Eigen::Vector3d bbox_min() const { return bbox_min_; }
+  Eigen::Vector3d bbox_max() const { return bbox_max_; }
+
+  // Named per-element fields (created on first use, shared by name afterwards).
+  template <typename T>
+  OpenMesh::VProp<T> VertexField(const std::string& name) {
+    return OpenMesh::VProp<T>(mesh_, name.c_str());
+  }
+  template <typename T>
+  OpenMesh::FProp<T> FaceField(const std::string& name) {
+    return OpenMesh::FProp<T>(mesh_, name.c_str());
+  }
+
+ private:
+  void ComputeFaceQuantities();
+  void ComputeBoundaryLoops();
+
+  TriMesh mesh_;
+  std::vector<std::array<int, 3>> face_vertices_;
+  std::vector<double> face_area_;
+  std::vector<Eigen::Vector3d> face_normal_;
+  std::vector<double> vertex_area_;
+  double total_area_ = 0.0;
+  std::vector<BoundaryLoop> loops_;
+  std::vector<int> vertex_loop_;
+  Eigen::Vector3d bbox_min_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d bbox_max_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace pqlayout

@@ -1,0 +1,106 @@
+#include "problems/boundary_conditions.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace pqlayout {
+namespace {
+
+Status ReadIdsFile(const std::string& path, std::vector<int>* ids) {
+  std::ifstream in(path);
+  if (!in) return Status::InvalidInput(path + ": vertex-id file not found");
+  std::string line;
+  for (int line_number = 1; std::getline(in, line); ++line_number) {
+    const size_t hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    for (char& ch : line)
+      if (ch == ',' || ch == ';' || ch == '\t') ch = ' ';
+    std::istringstream words(line);
+    std::string word;
+    while (words >> word) {
+      size_t used = 0;
+      int id = -1;
+      try {
+        id = std::stoi(word, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != word.size() || id < 0)
+        return Status::InvalidInput(path + ":" + std::to_string(line_number) + ": '" + word + "' is not a vertex id");
+      ids->push_back(id);
+    }
+  }
+  return Status::Ok();
+}
+
+// The boundary vertices a selector picks.
+Status Select(const BoundarySelector& s, const SurfaceModel& surface, double corner_angle,
+              std::vector<int>* picked) {
+  using K = BoundarySelector::Kind;
+  const auto& loops = surface.boundary_loops();
+  auto add_loop = [&](size_t l) {
+    for (const auto v : loops[l].vertices) picked->push_back(v.idx());
+  };
+  switch (s.kind) {
+    case K::kAll:
+      for (size_t l = 0; l < loops.size(); ++l) add_loop(l);
+      return Status::Ok();
+    case K::kOuter: add_loop(0); return Status::Ok();
+    case K::kInner:
+      if (loops.size() < 2) return Status::InvalidInput("selects inner loops but the surface has only one boundary loop");
+      for (size_t l = 1; l < loops.size(); ++l) add_loop(l);
+      return Status::Ok();
+    case K::kLoop:
+      if (s.loop >= static_cast<int>(loops.size()))
+        return Status::InvalidInput("selects loop " + std::to_string(s.loop) + " but the surface has " +
+                                    std::to_string(loops.size()) + " boundary loop(s), numbered from 0 (outer)");
+      add_loop(s.loop);
+      return Status::Ok();
+    case K::kCorners:
+      *picked = surface.BoundaryCorners(corner_angle * M_PI / 180.0);
+      return Status::Ok();
+    case K::kBox:
+      for (int v = 0; v < surface.num_vertices(); ++v) {
+        const Eigen::Vector3d p = surface.position(v);
+        if (surface.is_boundary(v) && (p.array() >= s.box_min.array()).all() && (p.array() <= s.box_max.array()).all())
+          picked->push_back(v);
+      }
+      return Status::Ok();
+    case K::kIds:
+    case K::kIdsFile: {
+      std::vector<int> ids = s.ids;
+      if (s.kind == K::kIdsFile) PQ_RETURN_IF_ERROR(ReadIdsFile(s.ids_file, &ids));
+      for (const int v : ids) {
+        if (v >= surface.num_vertices())
+          return Status::InvalidInput("vertex " + std::to_string(v) + " does not exist (the surface has " +
+                                      std::to_string(surface.num_vertices()) + " vertices)");
+        if (!surface.is_boundary(v)) return Status::InvalidInput("vertex " + std::to_string(v) + " is not a boundary vertex");
+        picked->push_back(v);
+      }
+      return Status::Ok();
+    }
+  }
+  return Status::Internal("unknown selector");
+}
+
+}  // namespace
+
+Status ResolveBoundaryConditions(const BoundaryOptions& options, const SurfaceModel& surface,
+                                 double corner_angle, VertexConditions* conditions) {
+  conditions->assign(surface.num_vertices(), std::nullopt);
+  for (int v = 0; v < surface.num_vertices(); ++v)
+    if (surface.is_boundary(v)) (*conditions)[v] = options.default_condition;
+  for (size_t r = 0; r < options.rules.size(); ++r) {
+    const BoundaryRule& rule = options.rules[r];
+    const std::string name = "boundary.rules[" + std::to_string(r) + "]" +
+                             (rule.origin.empty() ? "" : " (" + rule.origin + ")");
+    std::vector<int> picked;
+    PQ_RETURN_IF_ERROR(Select(rule.select, surface, corner_angle, &picked).WithContext(name));
+    if (picked.empty()) return Status::InvalidInput(name + ": selects no boundary vertex");
+    for (const int v : picked) (*conditions)[v] = rule.condition;
+  }
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

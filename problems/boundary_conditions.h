@@ -1,0 +1,23 @@
+// Resolves boundary.default and boundary.rules into one support condition per boundary
+// vertex of the reference surface (SPEC §2: selectors all, loop by index or inner/outer,
+// bounding box, vertex-id list or file; plus corners).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "geometry/surface_model.h"
+#include "problems/config.h"
+
+namespace pqlayout {
+
+// Per vertex: the condition of a boundary vertex, std::nullopt for interior vertices.
+using VertexConditions = std::vector<std::optional<BoundaryCondition>>;
+
+// corner_angle: turning angle in degrees for the `corners` selector (extract.corner_angle).
+// A rule that selects no boundary vertex, an index out of range or an id that is not a
+// boundary vertex is InvalidInput naming the rule ("boundary.rules[2] (line 14): ...").
+Status ResolveBoundaryConditions(const BoundaryOptions& options, const SurfaceModel& surface,
+                                 double corner_angle, VertexConditions* conditions);
+
+}  // namespace pqlayout

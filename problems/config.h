@@ -1,0 +1,158 @@
+// The run configuration: one options struct per stage, every field with its default and a
+// one-line comment. Config keys are the dotted snake_case paths of these fields
+// (`levelset.weights.alignment`); the table in config.cc binds each key to its field, type,
+// range and comment, and is the single source for parsing, `--set`, the resolved config in
+// report.json and the config reference (`pqlayout keys`).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "geometry/status.h"
+
+namespace pqlayout {
+
+// How a boundary vertex is supported (SPEC §2 and §7).
+enum class BoundaryCondition { kFixed, kFree, kClamped, kSliding };
+const char* BoundaryConditionName(BoundaryCondition c);
+
+// Which boundary vertices a rule applies to.
+struct BoundarySelector {
+  enum class Kind { kAll, kLoop, kOuter, kInner, kBox, kIds, kIdsFile, kCorners };
+  Kind kind = Kind::kAll;
+  int loop = -1;                                        // kLoop: index, 0 = outer loop
+  Eigen::Vector3d box_min = Eigen::Vector3d::Zero();    // kBox: axis-aligned box, metres
+  Eigen::Vector3d box_max = Eigen::Vector3d::Zero();
+  std::vector<int> ids;                                 // kIds: vertex ids
+  std::string ids_file;                                 // kIdsFile: file of vertex ids
+};
+
+struct BoundaryRule {
+  BoundarySelector select;
+  BoundaryCondition condition = BoundaryCondition::kFixed;
+  std::string origin;  // where the rule was written ("file.yaml:12"), for error messages
+};
+
+struct SurfaceOptions {
+  std::string file;                   // reference mesh (OBJ/PLY/OFF/STL, metres); relative to the config file
+  std::string generator = "great_court";  // built-in surface when no file is given
+  double edge_length = 1.0;           // generator: target triangle edge length, m
+  double width = 30.0;                // generator: x extent, m (disk/annulus: outer diameter)
+  double depth = 30.0;                // generator: y extent, m (annulus: inner diameter)
+  double rise = 5.0;                  // generator: crown height above the supports, m
+};
+
+struct BoundaryOptions {
+  BoundaryCondition default_condition = BoundaryCondition::kFixed;  // key: boundary.default
+  std::vector<BoundaryRule> rules;    // applied in order, later rules win
+};
+
+struct LoadOptions {
+  double q = 1350.0;  // dead load per area for the membrane solve, N/m² (glazed steel grid shell)
+};
+
+struct MembraneOptions {
+  double stiffness = 1.0e6;  // λ_m, membrane stiffness, N/m (scales v; directions do not depend on it)
+  double bending = 0.0;      // λ_b, bending stiffness, N·m (0 = the paper's pure membrane)
+};
+
+struct GuidanceOptions {
+  std::string source = "strain";  // strain | curvature | file
+  double threshold = 0.2;  // no alignment where |ε_max| < threshold × max |ε_max|
+  double ramp = 0.1;       // weight ramps 0 → 1 over [threshold, threshold + ramp] × max
+  std::string file;        // source = file: per-face CSV (id,dx,dy,dz[,weight])
+};
+
+struct LayoutOptions {
+  double spacing = 3.0;  // h: distance between neighbouring level lines, m
+};
+
+struct LevelsetWeights {
+  double alignment = 1.0;       // φ's level lines follow the guidance
+  double spacing = 1.0;         // h|∇φ| = 1 and h|∇ψ| = 1
+  double smoothness = 0.1;      // gradient difference across interior edges
+  double conjugacy = 1.0;       // II(n×∇φ, n×∇ψ) = 0
+  double transversality = 1.0;  // crossing angle ≥ levelset.min_angle
+};
+
+struct LevelsetOptions {
+  LevelsetWeights weights;
+  double min_angle = 30.0;  // minimum crossing angle of the two families, degrees
+  int max_iterations = 200; // Ceres iterations per solve
+};
+
+struct ExtractOptions {
+  double corner_angle = 30.0;  // boundary turning angle above which a vertex is a corner, degrees
+  double min_edge = 0.2;       // edges shorter than min_edge × h are merged
+};
+
+struct PlanarizeWeights {
+  double planarity = 1.0;   // faces planar
+  double closeness = 1.0;   // vertices on the reference surface
+  double boundary = 1.0;    // boundary vertices on the reference boundary
+  double fairness = 0.01;   // second differences along the mesh polylines
+};
+
+struct PlanarizeOptions {
+  PlanarizeWeights weights;
+  double target_delta = 1e-3;  // stop when max planarity δ ≤ target
+  int max_rounds = 20;         // outer rounds (closest-point refresh, planarity weight raise)
+};
+
+struct MaterialOptions {
+  double youngs_modulus = 210e9;  // E, Pa (steel)
+  double poisson_ratio = 0.3;     // ν; G = E / (2(1+ν))
+  double density = 7850.0;        // ρ, kg/m³
+};
+
+struct SectionOptions {
+  std::string shape = "circular_hollow";  // circular_hollow | rectangular_hollow
+  double diameter = 0.1143;   // circular hollow: outside diameter D, m
+  double thickness = 0.005;   // wall thickness t, m
+  double width = 0.06;        // rectangular hollow: width (in the surface), m
+  double height = 0.12;       // rectangular hollow: height (along the surface normal), m
+};
+
+struct AnalysisOptions {
+  double panel_load = 1000.0;  // panel dead load, N/m² of face area
+  double gravity = 9.81;       // g, m/s²
+  bool export_calculix = false;  // also write analysis/model.inp for CalculiX
+  MaterialOptions material;
+  SectionOptions section;
+};
+
+struct Config {
+  SurfaceOptions surface;
+  BoundaryOptions boundary;
+  LoadOptions load;
+  MembraneOptions membrane;
+  GuidanceOptions guidance;
+  LayoutOptions layout;
+  LevelsetOptions levelset;
+  ExtractOptions extract;
+  PlanarizeOptions planarize;
+  AnalysisOptions analysis;
+};
+
+// Reads a YAML config file and applies `--set KEY=VALUE` overrides (VALUE is YAML) after
+// it, so overrides win. Relative paths in the file are resolved against the file's folder,
+// those in overrides against the working directory. Unknown keys, wrong types and values
+// out of range are InvalidInput naming the file, line and key.
+Status LoadConfig(const std::string& path, const std::vector<std::string>& overrides, Config* config);
+
+// Same from YAML text; source_name stands in for the file name in messages and
+// base_dir is where relative paths are resolved from.
+Status ParseConfig(const std::string& yaml_text, const std::string& source_name,
+                   const std::string& base_dir, const std::vector<std::string>& overrides,
+                   Config* config);
+
+// The resolved config as nested JSON (every key, defaults included).
+nlohmann::json ConfigToJson(const Config& config);
+
+// The config reference as a Markdown table: key, type, default, meaning.
+std::string ConfigReferenceMarkdown();
+
+}  // namespace pqlayout

@@ -1,0 +1,113 @@
+#include "problems/pipeline.h"
+
+#include <glog/logging.h>
+
+#include <chrono>
+#include <ctime>
+
+#include "problems/build_info.h"
+#include "problems/stages.h"
+
+namespace pqlayout {
+namespace {
+
+struct StageEntry {
+  Stage stage;
+  const char* name;
+  StageFunction run;  // nullptr: not implemented in this version
+};
+
+// The pipeline in order. Adding a stage = one file + its line here.
+const StageEntry kStages[] = {
+    {Stage::kSurface, "surface", &RunSurfaceStage},
+    {Stage::kMembrane, "membrane", nullptr},
+    {Stage::kGuidance, "guidance", nullptr},
+    {Stage::kLevelset, "levelset", nullptr},
+    {Stage::kExtract, "extract", nullptr},
+    {Stage::kPlanarize, "planarize", nullptr},
+    {Stage::kAnalyze, "analyze", nullptr},
+};
+
+std::string UtcNow() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+nlohmann::json BuildInfoJson() {
+  const BuildInfo& info = GetBuildInfo();
+  nlohmann::json libraries = nlohmann::json::object();
+  for (const auto& [name, version] : info.libraries) libraries[name] = version;
+  return {{"version", info.version}, {"git_revision", info.git_revision}, {"libraries", libraries}};
+}
+
+}  // namespace
+
+const std::vector<std::string>& StageNames() {
+  static const std::vector<std::string> kNames = [] {
+    std::vector<std::string> names;
+    for (const auto& s : kStages) names.push_back(s.name);
+    return names;
+  }();
+  return kNames;
+}
+
+const char* StageName(Stage stage) { return kStages[static_cast<int>(stage)].name; }
+
+std::optional<Stage> StageFromName(const std::string& name) {
+  for (const auto& s : kStages)
+    if (name == s.name) return s.stage;
+  return std::nullopt;
+}
+
+Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::json* report) {
+  const auto run_start = std::chrono::steady_clock::now();
+  std::unique_ptr<OutputFiles> out;
+  PQ_RETURN_IF_ERROR(OutputFiles::Open(options.out_dir, &out));
+
+  *report = {{"pqlayout", BuildInfoJson()},
+             {"run", {{"command", options.command_line},
+                      {"config_file", options.config_path},
+                      {"output_folder", out->final_dir()},
+                      {"started_at", UtcNow()},
+                      {"until", StageName(options.until)}}},
+             {"config", ConfigToJson(config)},
+             {"stages", nlohmann::json::object()}};
+  PipelineState state;
+  state.config = config;
+  nlohmann::json completed = nlohmann::json::array(), not_implemented = nlohmann::json::array();
+  for (const auto& entry : kStages) {
+    if (static_cast<int>(entry.stage) > static_cast<int>(options.until)) break;
+    if (!entry.run) {
+      not_implemented.push_back(entry.name);
+      continue;
+    }
+    if (!not_implemented.empty()) break;  // a later stage needs the missing one's results
+    LOG(INFO) << entry.name << ": started";
+    const auto stage_start = std::chrono::steady_clock::now();
+    nlohmann::json metrics = nlohmann::json::object();
+    PQ_RETURN_IF_ERROR(entry.run(&state, out.get(), &metrics));
+    metrics["seconds"] = SecondsSince(stage_start);
+    (*report)["stages"][entry.name] = metrics;
+    completed.push_back(entry.name);
+    LOG(INFO) << entry.name << ": done in " << metrics["seconds"].get<double>() << " s";
+  }
+  if (!not_implemented.empty()) {
+    LOG(WARNING) << "stage '" << not_implemented[0].get<std::string>() << "' and later are not implemented in pqlayout "
+                 << GetBuildInfo().version << "; the run stops after '" << completed.back().get<std::string>() << "'";
+  }
+  (*report)["run"]["completed_stages"] = completed;
+  (*report)["run"]["stages_not_implemented"] = not_implemented;
+  (*report)["run"]["total_seconds"] = SecondsSince(run_start);
+  PQ_RETURN_IF_ERROR(out->WriteText("report.json", report->dump(2) + "\n"));
+  PQ_RETURN_IF_ERROR(out->Commit());
+  LOG(INFO) << "wrote " << out->final_dir() << " in " << SecondsSince(run_start) << " s";
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

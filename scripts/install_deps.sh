@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian packages pqlayout needs, if any is missing. Safe to run repeatedly.
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build git pkg-config
+  libceres-dev libeigen3-dev libsuitesparse-dev libopenmesh-dev libgoogle-glog-dev libgflags-dev
+  libyaml-cpp-dev libcgal-dev libgmp-dev libmpfr-dev nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "pqlayout: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

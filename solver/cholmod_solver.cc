@@ -1,0 +1,105 @@
+#include "solver/cholmod_solver.h"
+
+#include <cholmod.h>
+
+#include <cmath>
+#include <string>
+
+namespace pqlayout {
+
+struct CholmodSolver::Impl {
+  cholmod_common common;
+  cholmod_factor* factor = nullptr;
+  Impl() {
+    cholmod_start(&common);
+    common.supernodal = CHOLMOD_SUPERNODAL;
+    common.print = 0;  // no printing from inside CHOLMOD; errors come back as Status
+    common.error_handler = nullptr;
+  }
+  ~Impl() {
+    if (factor) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+};
+
+CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
+CholmodSolver::~CholmodSolver() = default;
+
+bool CholmodSolver::factorized() const { return impl_->factor != nullptr; }
+bool CholmodSolver::is_supernodal() const { return impl_->factor && impl_->factor->is_super; }
+
+Status CholmodSolver::Factorize(const Eigen::SparseMatrix<double>& A_in) {
+  if (impl_->factor) cholmod_free_factor(&impl_->factor, &impl_->common);
+  rows_ = 0;
+  if (A_in.rows() != A_in.cols())
+    return Status::InvalidInput("matrix is not square (" + std::to_string(A_in.rows()) + " x " +
+                                std::to_string(A_in.cols()) + ")");
+  if (A_in.rows() == 0) return Status::InvalidInput("matrix is empty");
+  Eigen::SparseMatrix<double> A = A_in;
+  A.makeCompressed();
+  for (int k = 0; k < A.nonZeros(); ++k)
+    if (!std::isfinite(A.valuePtr()[k])) return Status::InvalidInput("matrix has a non-finite entry");
+  const double asymmetry = (Eigen::SparseMatrix<double>(A.transpose()) - A).cwiseAbs().sum();
+  if (!(asymmetry <= 1e-12 * A.cwiseAbs().sum()))
+    return Status::InvalidInput("matrix is not symmetric (relative asymmetry " + std::to_string(asymmetry) + ")");
+
+  cholmod_sparse view{};
+  view.nrow = view.ncol = A.rows();
+  view.nzmax = A.nonZeros();
+  view.p = A.outerIndexPtr();
+  view.i = A.innerIndexPtr();
+  view.x = A.valuePtr();
+  view.stype = -1;  // symmetric, use the lower triangle
+  view.itype = CHOLMOD_INT;
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  view.sorted = 1;
+  view.packed = 1;
+
+  cholmod_common* c = &impl_->common;
+  impl_->factor = cholmod_analyze(&view, c);
+  if (!impl_->factor) return Status::Internal("CHOLMOD analyze failed (status " + std::to_string(c->status) + ")");
+  cholmod_factorize(&view, impl_->factor, c);
+  if (c->status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
+    const auto column = impl_->factor->minor;
+    cholmod_free_factor(&impl_->factor, c);
+    return Status::Internal("matrix is not positive definite (Cholesky failed at column " +
+                            std::to_string(column) + ")");
+  }
+  if (c->status != CHOLMOD_OK) {
+    cholmod_free_factor(&impl_->factor, c);
+    return Status::Internal("CHOLMOD factorize failed (status " + std::to_string(c->status) + ")");
+  }
+  rows_ = static_cast<int>(A.rows());
+  return Status::Ok();
+}
+
+Status CholmodSolver::Solve(const Eigen::MatrixXd& b, Eigen::MatrixXd* x) const {
+  if (!impl_->factor) return Status::Internal("Solve called without a successful Factorize");
+  if (b.rows() != rows_)
+    return Status::Internal("right-hand side has " + std::to_string(b.rows()) + " rows, expected " +
+                            std::to_string(rows_));
+  cholmod_dense rhs{};
+  rhs.nrow = b.rows();
+  rhs.ncol = b.cols();
+  rhs.nzmax = b.size();
+  rhs.d = b.rows();
+  rhs.x = const_cast<double*>(b.data());
+  rhs.xtype = CHOLMOD_REAL;
+  rhs.dtype = CHOLMOD_DOUBLE;
+  cholmod_common* c = &impl_->common;
+  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, impl_->factor, &rhs, c);
+  if (!sol) return Status::Internal("CHOLMOD solve failed (status " + std::to_string(c->status) + ")");
+  *x = Eigen::Map<Eigen::MatrixXd>(static_cast<double*>(sol->x), b.rows(), b.cols());
+  cholmod_free_dense(&sol, c);
+  return Status::Ok();
+}
+
+Status CholmodSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {
+  Eigen::MatrixXd solution;
+  PQ_RETURN_IF_ERROR(Solve(Eigen::MatrixXd(b), &solution));
+  *x = solution.col(0);
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,158 @@
+// The pqlayout executable as a user meets it: exit codes, one-line errors, no partial output
+// on failure, --set precedence, --until, --version, and report.json's contract keys.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tests/test_meshes.h"
+
+namespace pqlayout {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `pqlayout ARGS` in dir.
+Result RunPqlayout(const std::string& dir, const std::string& args) {
+  const std::string command = "cd '" + dir + "' && '" PQLAYOUT_BINARY "' " + args + " > stdout.txt 2> stderr.txt";
+  const int status = std::system(command.c_str());
+  Result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = ReadAll(dir + "/stdout.txt");
+  r.err = ReadAll(dir + "/stderr.txt");
+  return r;
+}
+
+int CountLines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+nlohmann::json ReadReport(const std::string& dir) { return nlohmann::json::parse(ReadAll(dir + "/report.json")); }
+
+const char* kPlaneConfig =
+    "surface:\n  generator: plane\n  width: 10\n  depth: 6\n  edge_length: 1.0\n"
+    "layout:\n  spacing: 2.0\n";
+
+TEST(Cli, VersionAndHelp) {
+  const auto dir = testing::TempDir();
+  Result r = RunPqlayout(dir, "--version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("pqlayout 0."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Ceres 2.1"), std::string::npos) << r.out;
+  r = RunPqlayout(dir, "--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("run"), std::string::npos);
+  r = RunPqlayout(dir, "run --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--until"), std::string::npos);
+}
+
+TEST(Cli, RunWritesReportAndSurface) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "plane.yaml", kPlaneConfig);
+  const Result r = RunPqlayout(dir, "run plane.yaml --out result --set layout.spacing=1.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("surface: done"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err, "");
+  ASSERT_TRUE(fs::exists(dir + "/result/surface.obj"));
+  const auto report = ReadReport(dir + "/result");
+  EXPECT_EQ(report["config"]["layout"]["spacing"], 1.5);  // --set wins over the file
+  EXPECT_EQ(report["config"]["surface"]["width"], 10.0);
+  EXPECT_GT(report["stages"]["surface"]["seconds"].get<double>(), 0.0);
+  EXPECT_NEAR(report["stages"]["surface"]["area"].get<double>(), 60.0, 1e-9);
+  EXPECT_EQ(report["stages"]["surface"]["supports"]["fixed"],
+            report["stages"]["surface"]["n_boundary_vertices"]);
+  EXPECT_FALSE(report["pqlayout"]["git_revision"].get<std::string>().empty());
+  EXPECT_TRUE(report["pqlayout"]["libraries"].contains("Ceres"));
+  // Nothing is left behind in the parent folder.
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".result.partial"), std::string::npos);
+}
+
+TEST(Cli, UntilStopsAfterTheStageAndRemovesStaleOutputs) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "plane.yaml", kPlaneConfig);
+  fs::create_directories(dir + "/result/figures");
+  testing::WriteFile(dir + "/result", "report.json", "{}");
+  testing::WriteFile(dir + "/result/figures", "old.svg", "<svg/>");
+  testing::WriteFile(dir + "/result", "notes.txt", "mine");
+  const Result r = RunPqlayout(dir, "run plane.yaml --out result --until surface");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = ReadReport(dir + "/result");
+  EXPECT_EQ(report["run"]["completed_stages"], nlohmann::json::array({"surface"}));
+  EXPECT_EQ(report["run"]["until"], "surface");
+  EXPECT_FALSE(fs::exists(dir + "/result/figures/old.svg"));  // a stale output of an earlier run
+  EXPECT_TRUE(fs::exists(dir + "/result/notes.txt"));          // not ours: kept
+}
+
+TEST(Cli, ReadsTheSurfaceFromAFile) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "roof.obj", testing::ObjText(testing::FlatGridSoup(4)));
+  testing::WriteFile(dir, "c.yaml", "surface:\n  file: roof.obj\nboundary:\n  default: free\n"
+                                    "  rules:\n    - select: corners\n      condition: fixed\n");
+  const Result r = RunPqlayout(dir, "run c.yaml --out o");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = ReadReport(dir + "/o");
+  EXPECT_EQ(report["stages"]["surface"]["n_faces"], 32);
+  EXPECT_EQ(report["stages"]["surface"]["supports"]["fixed"], 4);
+  EXPECT_EQ(report["stages"]["surface"]["supports"]["free"], 12);
+}
+
+struct BadInput {
+  std::string config, args, expected;
+};
+
+TEST(Cli, BadInputGivesOneLineExitTwoAndNoOutput) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "broken.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  const std::vector<BadInput> cases = {
+      {"levelset:\n  wieghts:\n    alignment: 2\n", "", "c.yaml:2: unknown key 'levelset.wieghts'"},
+      {"surface:\n  file: missing.obj\n", "", "missing.obj: file not found"},
+      {"surface:\n  file: broken.obj\n", "", "broken.obj: face 0 is degenerate"},
+      {"layout:\n  spacing: -3\n", "", "c.yaml:2: layout.spacing: must be > 0"},
+      {"", "--set layout.spacing=x", "--set layout.spacing=x: layout.spacing: expected a number"},
+      {"", "--until levelsets", "--until: levelsets not in"},
+      {"surface:\n  generator: plane\n  edge_length: 1e-7\n", "", "surface.edge_length"},
+      {"boundary:\n  rules:\n    - select: inner\n      condition: free\n",
+       "--set surface.generator=plane --set surface.edge_length=2", "boundary.rules[0] (line 3): selects inner loops"},
+  };
+  for (const auto& c : cases) {
+    testing::WriteFile(dir, "c.yaml", c.config);
+    const Result r = RunPqlayout(dir, "run c.yaml --out bad " + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.expected << "\n" << r.err;
+    EXPECT_EQ(CountLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.rfind("pqlayout: error: ", 0), 0u) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/bad")) << c.expected;
+  }
+  const Result missing = RunPqlayout(dir, "run nothing.yaml");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("nothing.yaml: config file not found"), std::string::npos);
+  const Result unknown = RunPqlayout(dir, "fly");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_EQ(CountLines(unknown.err), 1) << unknown.err;
+}
+
+TEST(Cli, KeysPrintsTheReference) {
+  const auto dir = testing::TempDir();
+  const Result r = RunPqlayout(dir, "keys");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("`levelset.weights.alignment`"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pqlayout

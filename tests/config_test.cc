@@ -1,0 +1,194 @@
+// Config parsing: defaults, every kind of error naming file, line and key, `--set`
+// precedence, path resolution, boundary rules, and the resolved JSON.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "problems/config.h"
+#include "tests/test_meshes.h"
+
+namespace pqlayout {
+namespace {
+
+Status Parse(const std::string& yaml, Config* c, const std::vector<std::string>& sets = {}) {
+  return ParseConfig(yaml, "cfg.yaml", "/base", sets, c);
+}
+
+void ExpectError(const std::string& yaml, const std::vector<std::string>& sets, const std::string& expected) {
+  Config c;
+  const Status s = Parse(yaml, &c, sets);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput) << yaml;
+  EXPECT_NE(s.message().find(expected), std::string::npos) << "message: " << s.message();
+}
+
+TEST(Config, EmptyConfigGivesTheDefaults) {
+  Config c;
+  ASSERT_TRUE(Parse("", &c).ok());
+  EXPECT_EQ(c.surface.generator, "great_court");
+  EXPECT_EQ(c.layout.spacing, 3.0);
+  EXPECT_EQ(c.load.q, 1350.0);
+  EXPECT_EQ(c.boundary.default_condition, BoundaryCondition::kFixed);
+  EXPECT_EQ(c.analysis.panel_load, 1000.0);
+  EXPECT_EQ(c.analysis.section.diameter, 0.1143);
+}
+
+TEST(Config, NestedKeysAreSet) {
+  Config c;
+  ASSERT_TRUE(Parse("layout:\n  spacing: 2.5\nlevelset:\n  weights:\n    alignment: 4\n"
+                    "analysis:\n  export_calculix: yes\nguidance:\n  source: curvature\n", &c).ok());
+  EXPECT_EQ(c.layout.spacing, 2.5);
+  EXPECT_EQ(c.levelset.weights.alignment, 4.0);
+  EXPECT_TRUE(c.analysis.export_calculix);
+  EXPECT_EQ(c.guidance.source, "curvature");
+}
+
+TEST(Config, UnknownKeyNamesLineAndSuggests) {
+  ExpectError("layout:\n  spacing: 3\nlevelset:\n  wieghts:\n    alignment: 2\n", {},
+              "cfg.yaml:4: unknown key 'levelset.wieghts' (did you mean 'levelset.weights");
+  ExpectError("levelset:\n  weights:\n    alignmnet: 2\n", {},
+              "cfg.yaml:3: unknown key 'levelset.weights.alignmnet' (did you mean 'levelset.weights.alignment'?)");
+  ExpectError("colour: red\n", {}, "cfg.yaml:1: unknown key 'colour'");
+}
+
+TEST(Config, WrongTypeAndRange) {
+  ExpectError("layout:\n  spacing: three\n", {}, "cfg.yaml:2: layout.spacing: expected a number, got 'three'");
+  ExpectError("layout:\n  spacing: -1\n", {}, "cfg.yaml:2: layout.spacing: must be > 0 (got -1)");
+  ExpectError("layout:\n  spacing: [1, 2]\n", {}, "layout.spacing: expected a number, got a list");
+  ExpectError("layout: 3\n", {}, "cfg.yaml:1: layout: is a section, expected a mapping of its keys");
+  ExpectError("guidance:\n  threshold: 1.5\n", {}, "guidance.threshold: must be in [0, 1] (got 1.5)");
+  ExpectError("guidance:\n  source: strian\n", {}, "guidance.source: unknown value 'strian' (expected strain | curvature | file)");
+  ExpectError("levelset:\n  max_iterations: 2.5\n", {}, "levelset.max_iterations: expected an integer");
+  ExpectError("analysis:\n  export_calculix: maybe\n", {}, "analysis.export_calculix: expected true or false");
+  ExpectError("load:\n  q: .nan\n", {}, "load.q: must be a finite number");
+  ExpectError("layout:\n  spacing: 1\n  spacing: 2\n", {}, "cfg.yaml:3: layout.spacing: duplicate key");
+  ExpectError("layout:\n  spacing: [1\n", {}, "cfg.yaml:");
+  ExpectError("- a\n- b\n", {}, "expected a mapping of config keys at the top level");
+}
+
+TEST(Config, SetOverridesTheFile) {
+  Config c;
+  ASSERT_TRUE(Parse("layout:\n  spacing: 2\n", &c, {"layout.spacing=1.5", "levelset.weights.conjugacy=0"}).ok());
+  EXPECT_EQ(c.layout.spacing, 1.5);
+  EXPECT_EQ(c.levelset.weights.conjugacy, 0.0);
+  // The last --set of a key wins.
+  ASSERT_TRUE(Parse("", &c, {"layout.spacing=1.5", "layout.spacing=4"}).ok());
+  EXPECT_EQ(c.layout.spacing, 4.0);
+}
+
+TEST(Config, SetErrorsNameTheArgument) {
+  ExpectError("", {"levelset.wieghts.alignment=2"},
+              "--set levelset.wieghts.alignment=2: levelset.wieghts.alignment: unknown key (did you mean 'levelset.weights.alignment'?)");
+  ExpectError("", {"layout.spacing"}, "--set layout.spacing: expected KEY=VALUE");
+  ExpectError("", {"layout.spacing=abc"}, "--set layout.spacing=abc: layout.spacing: expected a number, got 'abc'");
+  ExpectError("", {"layout=1"}, "layout: is a section, not a key");
+}
+
+TEST(Config, PathsResolveAgainstTheConfigFolderButSetPathsAgainstTheWorkingDirectory) {
+  Config c;
+  ASSERT_TRUE(Parse("surface:\n  file: meshes/roof.obj\n", &c).ok());
+  EXPECT_EQ(c.surface.file, "/base/meshes/roof.obj");
+  EXPECT_EQ(c.surface.generator, "");  // a file replaces the default generator
+  ASSERT_TRUE(Parse("", &c, {"surface.file=roof.obj"}).ok());
+  EXPECT_EQ(c.surface.file, "roof.obj");
+  EXPECT_EQ(c.surface.generator, "");
+}
+
+TEST(Config, SurfaceComesFromExactlyOneSource) {
+  ExpectError("surface:\n  file: a.obj\n  generator: dome\n", {}, "set either surface.file or surface.generator, not both");
+  ExpectError("surface:\n  generator: \"\"\n", {}, "set surface.file or surface.generator");
+  Config c;
+  ASSERT_TRUE(Parse("surface:\n  file: a.obj\n", &c, {"surface.generator=dome"}).ok());
+  EXPECT_EQ(c.surface.generator, "dome");
+  EXPECT_EQ(c.surface.file, "");
+}
+
+TEST(Config, BoundaryRules) {
+  Config c;
+  const std::string yaml =
+      "boundary:\n"
+      "  default: free\n"
+      "  rules:\n"
+      "    - select: inner\n"
+      "      condition: fixed\n"
+      "    - select: {box: [-1, -2, -3, 1, 2, 3]}\n"
+      "      condition: sliding\n"
+      "    - select: {ids_file: supports.txt}\n"
+      "      condition: clamped\n"
+      "    - select: {loop: 1}\n"
+      "      condition: fixed\n";
+  ASSERT_TRUE(Parse(yaml, &c).ok());
+  EXPECT_EQ(c.boundary.default_condition, BoundaryCondition::kFree);
+  ASSERT_EQ(c.boundary.rules.size(), 4u);
+  EXPECT_EQ(c.boundary.rules[0].select.kind, BoundarySelector::Kind::kInner);
+  EXPECT_EQ(c.boundary.rules[1].select.box_min, Eigen::Vector3d(-1, -2, -3));
+  EXPECT_EQ(c.boundary.rules[1].condition, BoundaryCondition::kSliding);
+  EXPECT_EQ(c.boundary.rules[2].select.ids_file, "/base/supports.txt");
+  EXPECT_EQ(c.boundary.rules[3].select.loop, 1);
+  EXPECT_EQ(c.boundary.rules[1].origin, "line 6");
+
+  ExpectError("boundary:\n  rules:\n    - select: inenr\n      condition: fixed\n", {},
+              "boundary.rules: [0].select: unknown selector 'inenr'");
+  ExpectError("boundary:\n  rules:\n    - select: all\n      condition: glued\n", {},
+              "boundary.rules: [0].condition: expected one of fixed | free | clamped | sliding, got 'glued'");
+  ExpectError("boundary:\n  rules:\n    - select: all\n", {}, "[0]: a rule needs both select and condition");
+  ExpectError("boundary:\n  rules:\n    - select: {box: [1, 2]}\n      condition: free\n", {},
+              "box: expected [xmin, ymin, zmin, xmax, ymax, zmax]");
+  ExpectError("boundary:\n  default: pinned\n", {}, "boundary.default: expected one of fixed | free | clamped | sliding");
+  ASSERT_TRUE(Parse("", &c, {"boundary.rules=[{select: outer, condition: sliding}]"}).ok());
+  ASSERT_EQ(c.boundary.rules.size(), 1u);
+  EXPECT_EQ(c.boundary.rules[0].select.kind, BoundarySelector::Kind::kOuter);
+}
+
+TEST(Config, ResolvedJsonMirrorsTheKeys) {
+  Config c;
+  ASSERT_TRUE(Parse("layout:\n  spacing: 2\n", &c, {"boundary.rules=[{select: inner, condition: free}]"}).ok());
+  const auto j = ConfigToJson(c);
+  EXPECT_EQ(j["layout"]["spacing"], 2.0);
+  EXPECT_EQ(j["levelset"]["weights"]["alignment"], 1.0);
+  EXPECT_EQ(j["boundary"]["default"], "fixed");
+  EXPECT_EQ(j["boundary"]["rules"][0]["select"], "inner");
+  EXPECT_EQ(j["boundary"]["rules"][0]["condition"], "free");
+  EXPECT_EQ(j["analysis"]["material"]["youngs_modulus"], 210e9);
+}
+
+TEST(Config, ReferenceListsEveryContractKey) {
+  const std::string reference = ConfigReferenceMarkdown();
+  for (const char* key : {"surface.file", "surface.generator", "surface.edge_length", "boundary.default",
+                          "boundary.rules", "load.q", "membrane.stiffness", "guidance.source",
+                          "guidance.threshold", "layout.spacing", "levelset.weights.alignment",
+                          "levelset.weights.spacing", "levelset.weights.smoothness", "levelset.weights.conjugacy",
+                          "planarize.weights.planarity", "planarize.weights.closeness", "analysis.panel_load",
+                          "analysis.export_calculix"})
+    EXPECT_NE(reference.find(std::string("`") + key + "`"), std::string::npos) << key;
+}
+
+TEST(Config, LoadConfigReadsAFile) {
+  const auto dir = testing::TempDir();
+  const auto path = testing::WriteFile(dir, "c.yaml", "layout:\n  spacing: 2\nsurface:\n  file: roof.obj\n");
+  Config c;
+  ASSERT_TRUE(LoadConfig(path, {}, &c).ok());
+  EXPECT_EQ(c.layout.spacing, 2.0);
+  EXPECT_EQ(c.surface.file, (std::filesystem::path(dir) / "roof.obj").string());
+  const Status missing = LoadConfig(dir + "/none.yaml", {}, &c);
+  EXPECT_EQ(missing.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(missing.message().find("none.yaml: config file not found"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pqlayout
+
+namespace pqlayout {
+namespace {
+
+TEST(Config, ReadmeCarriesTheCurrentReference) {
+  std::ifstream in(PQLAYOUT_SOURCE_DIR "/README.md");
+  std::stringstream readme;
+  readme << in.rdbuf();
+  EXPECT_NE(readme.str().find(ConfigReferenceMarkdown()), std::string::npos)
+      << "README.md's config reference is out of date: paste the output of `pqlayout keys`";
+}
+
+}  // namespace
+}  // namespace pqlayout
