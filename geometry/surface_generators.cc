@@ -6,6 +6,8 @@
 #include <functional>
 #include <string>
 
+#include <Eigen/Geometry>
+
 #include "geometry/planar_domain_mesher.h"
 
 namespace pqlayout {
@@ -155,19 +157,122 @@ const Generator* FindGenerator(const std::string& name) {
   return nullptr;
 }
 
+OpenMesh::Vec3d Lift(const HeightField& field, const Eigen::Vector2d& q) {
+  return {q.x(), q.y(), field.height(q.x(), q.y())};
+}
+
+Eigen::Vector2d PlanPosition(const TriMesh& mesh, VertexHandle v) {
+  const OpenMesh::Vec3d& p = mesh.point(v);
+  return {p[0], p[1]};
+}
+
+// Twice the signed plan area of the triangle (a, b, c): positive if counter-clockwise.
+double PlanOrientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                       const Eigen::Vector2d& c) {
+  const Eigen::Vector2d u = b - a, v = c - a;
+  return u.x() * v.y() - u.y() * v.x();
+}
+
+// Angle at `apex` of the triangle (apex, a, b) in space.
+double SpaceAngle(const TriMesh& mesh, VertexHandle apex, VertexHandle a, VertexHandle b) {
+  const Eigen::Vector3d u = ToEigen(mesh.point(a) - mesh.point(apex));
+  const Eigen::Vector3d v = ToEigen(mesh.point(b) - mesh.point(apex));
+  return std::atan2(u.cross(v).norm(), u.dot(v));
+}
+
 // Lifts each planar point to (x, y, height(x, y)); counter-clockwise triangles in the plane
 // give faces whose normals point up.
 void LiftToMesh(const PlanarTriangulation& plan, const HeightField& field, TriMesh* mesh) {
   mesh->clear();
   std::vector<VertexHandle> vertices;
   vertices.reserve(plan.points.size());
-  for (const Eigen::Vector2d& p : plan.points) {
-    vertices.push_back(mesh->add_vertex({p.x(), p.y(), field.height(p.x(), p.y())}));
-  }
+  for (const Eigen::Vector2d& p : plan.points) vertices.push_back(mesh->add_vertex(Lift(field, p)));
   for (const std::array<int, 3>& t : plan.triangles) {
     mesh->add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]);
   }
-  mesh->update_face_normals();
+}
+
+// Splits every interior edge longer than max_length (in space) at its plan midpoint.
+// Boundary edges keep the planar mesher's vertices, which lie exactly on the domain loops.
+void SplitLongEdges(const HeightField& field, double max_length, TriMesh* mesh) {
+  std::vector<EdgeHandle> long_edges;
+  for (EdgeHandle e : mesh->edges()) {
+    if (!mesh->is_boundary(e) && mesh->calc_edge_length(e) > max_length) long_edges.push_back(e);
+  }
+  for (EdgeHandle e : long_edges) {
+    const HalfedgeHandle h = mesh->halfedge_handle(e, 0);
+    const Eigen::Vector2d midpoint = 0.5 * (PlanPosition(*mesh, mesh->from_vertex_handle(h)) +
+                                            PlanPosition(*mesh, mesh->to_vertex_handle(h)));
+    mesh->split(e, Lift(field, midpoint));
+  }
+}
+
+// Flips interior edge e if its two opposite angles in space sum to more than π (it is not
+// locally Delaunay on the surface) and both new triangles are counter-clockwise in the plan.
+bool FlipIfNotDelaunay(EdgeHandle e, TriMesh* mesh) {
+  if (mesh->is_boundary(e) || !mesh->is_flip_ok(e)) return false;
+  const HalfedgeHandle h = mesh->halfedge_handle(e, 0);
+  const HalfedgeHandle twin = mesh->halfedge_handle(e, 1);
+  const VertexHandle p = mesh->from_vertex_handle(h), q = mesh->to_vertex_handle(h);
+  const VertexHandle a = mesh->to_vertex_handle(mesh->next_halfedge_handle(h));
+  const VertexHandle b = mesh->to_vertex_handle(mesh->next_halfedge_handle(twin));
+  constexpr double kTolerance = 1e-9;
+  if (SpaceAngle(*mesh, a, p, q) + SpaceAngle(*mesh, b, q, p) <= M_PI + kTolerance) {
+    return false;
+  }
+  // The quad p, b, q, a is counter-clockwise; the diagonal a-b must stay inside it.
+  const Eigen::Vector2d pp = PlanPosition(*mesh, p), pq = PlanPosition(*mesh, q);
+  const Eigen::Vector2d pa = PlanPosition(*mesh, a), pb = PlanPosition(*mesh, b);
+  if (PlanOrientation(pp, pb, pa) <= 0.0 || PlanOrientation(pb, pq, pa) <= 0.0) return false;
+  mesh->flip(e);
+  return true;
+}
+
+void FlipToSurfaceDelaunay(TriMesh* mesh) {
+  constexpr int kMaxSweeps = 20;  // flips on a curved surface need not settle; bound them
+  for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+    int flips = 0;
+    for (EdgeHandle e : mesh->edges()) flips += FlipIfNotDelaunay(e, mesh);
+    if (flips == 0) return;
+  }
+}
+
+// Moves each interior vertex to the plan position under the area-weighted centroid of its
+// incident triangles (a tangential Lloyd step), unless that would fold a triangle in the plan.
+void SmoothInteriorVertices(const HeightField& field, TriMesh* mesh) {
+  for (VertexHandle v : mesh->vertices()) {
+    if (mesh->is_boundary(v)) continue;
+    Eigen::Vector3d weighted_centroid = Eigen::Vector3d::Zero();
+    double area = 0.0;
+    for (FaceHandle f : mesh->vf_range(v)) {
+      const double face_area = mesh->calc_face_area(f);
+      weighted_centroid += face_area * ToEigen(mesh->calc_face_centroid(f));
+      area += face_area;
+    }
+    const Eigen::Vector2d target = (weighted_centroid / area).head<2>();
+    bool folds = false;
+    for (HalfedgeHandle h : mesh->voh_range(v)) {
+      const HalfedgeHandle opposite = mesh->next_halfedge_handle(h);
+      folds |= PlanOrientation(target, PlanPosition(*mesh, mesh->from_vertex_handle(opposite)),
+                               PlanPosition(*mesh, mesh->to_vertex_handle(opposite))) <= 0.0;
+    }
+    if (!folds) mesh->set_point(v, Lift(field, target));
+  }
+}
+
+// The planar mesh is isotropic in the plan, but a steep height field stretches it (the Great
+// Court rises with slope up to 1.4 from its north edge, which lengthens edges by up to 1.7
+// and flattens triangles). A few rounds of isotropic remeshing on the surface restore edge
+// length and shape in space; every vertex stays on z = f(x, y) and boundary vertices stay put.
+void RemeshOnSurface(const HeightField& field, double edge_length, TriMesh* mesh) {
+  constexpr int kRounds = 5;
+  constexpr double kMaxLengthRatio = 4.0 / 3.0;  // as in Botsch & Kobbelt 2004
+  for (int round = 0; round < kRounds; ++round) {
+    SplitLongEdges(field, kMaxLengthRatio * edge_length, mesh);
+    FlipToSurfaceDelaunay(mesh);
+    SmoothInteriorVertices(field, mesh);
+  }
+  FlipToSurfaceDelaunay(mesh);
 }
 
 }  // namespace
@@ -226,6 +331,8 @@ Status GenerateSurface(const GeneratorParams& params, TriMesh* mesh) {
   PQ_RETURN_IF_ERROR(
       MeshPlanarDomain(field.domain, params.edge_length, &plan).WithContext("surface.edge_length"));
   LiftToMesh(plan, field, mesh);
+  RemeshOnSurface(field, params.edge_length, mesh);
+  mesh->update_face_normals();
   return Status::Ok();
 }
 

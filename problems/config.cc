@@ -311,7 +311,7 @@ KeyTable::KeyTable(Config* c) {
         "{box: [xmin, ymin, zmin, xmax, ymax, zmax]} | {ids: [...]} | {ids_file: PATH}");
 
   Number("load.q", &c->load.q, kPositive, "dead load per area for the membrane solve, N/m²");
-  Number("membrane.stiffness", &c->membrane.stiffness, kPositive, "λ_m, membrane stiffness, N/m (scales v only)");
+  Number("membrane.stiffness", &c->membrane.stiffness, kPositive, "λ_m, membrane stiffness, N/m: v scales with 1/λ_m; the strain directions depend on it only through ε's quadratic term ½∇v∇vᵀ");
   Number("membrane.bending", &c->membrane.bending, kNonNegative, "λ_b, bending stiffness, N·m (0 = pure membrane, as in the paper)");
 
   auto& g = c->guidance;

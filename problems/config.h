@@ -55,7 +55,7 @@ struct LoadOptions {
 };
 
 struct MembraneOptions {
-  double stiffness = 1.0e6;  // λ_m, membrane stiffness, N/m (scales v; directions do not depend on it)
+  double stiffness = 1.0e6;  // λ_m, membrane stiffness, N/m (scales v; ε's directions only weakly)
   double bending = 0.0;      // λ_b, bending stiffness, N·m (0 = the paper's pure membrane)
 };
 

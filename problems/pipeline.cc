@@ -20,8 +20,8 @@ struct StageEntry {
 // The pipeline in order. Adding a stage = one file + its line here.
 const StageEntry kStages[] = {
     {Stage::kSurface, "surface", &RunSurfaceStage},
-    {Stage::kMembrane, "membrane", nullptr},
-    {Stage::kGuidance, "guidance", nullptr},
+    {Stage::kMembrane, "membrane", &RunMembraneStage},
+    {Stage::kGuidance, "guidance", &RunGuidanceStage},
     {Stage::kLevelset, "levelset", nullptr},
     {Stage::kExtract, "extract", nullptr},
     {Stage::kPlanarize, "planarize", nullptr},

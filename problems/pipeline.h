@@ -14,6 +14,7 @@
 #include "geometry/surface_model.h"
 #include "problems/boundary_conditions.h"
 #include "problems/config.h"
+#include "problems/guidance.h"
 #include "problems/output_files.h"
 
 namespace pqlayout {
@@ -29,6 +30,8 @@ struct PipelineState {
   Config config;
   std::unique_ptr<SurfaceModel> surface;  // stage surface
   VertexConditions supports;              // stage surface: per boundary vertex
+  // stage membrane: vertex field "v_z" on *surface
+  GuidanceField guidance;                 // stage guidance
 };
 
 // One stage: reads and extends state, writes files through out, fills metrics (JSON object;

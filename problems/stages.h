@@ -9,4 +9,11 @@ namespace pqlayout {
 // writes surface.obj.
 Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
 
+// membrane: v_z under dead load (CHOLMOD); vertex field "v_z".
+Status RunMembraneStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
+
+// guidance: per-face direction and alignment weight (strain, curvature or file);
+// writes fields/vertices.csv, fields/faces.csv, fields.vtk.
+Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
+
 }  // namespace pqlayout

@@ -1,0 +1,32 @@
+// Per-element fields on the reference surface, written for ParaView (legacy VTK polydata,
+// ASCII, double precision) and as CSV tables.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/status.h"
+#include "geometry/surface_model.h"
+
+namespace pqlayout {
+
+struct SurfaceFields {
+  std::vector<std::pair<std::string, std::vector<double>>> vertex_scalars;
+  std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>> vertex_vectors;
+  std::vector<std::pair<std::string, std::vector<double>>> face_scalars;
+  std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>> face_vectors;
+};
+
+// Writes the surface and its fields as a legacy VTK file (opens in ParaView), atomically.
+Status WriteFieldsVtk(const SurfaceModel& surface, const SurfaceFields& fields, const std::string& path);
+
+// A CSV table: header row of column names, then one row per element with its id first.
+// Each column is a vector of values of the same length; vector-valued columns are split
+// into three named columns by the caller.
+Status WriteCsvTable(const std::vector<std::string>& header, const std::vector<const std::vector<double>*>& columns,
+                     const std::string& path);
+
+}  // namespace pqlayout

@@ -1,0 +1,43 @@
+#include "geometry/line_field_singularities.h"
+
+#include <cmath>
+
+namespace pqlayout {
+
+std::vector<LineFieldSingularity> FindLineFieldSingularities(const SurfaceModel& surface,
+                                                             const std::vector<Eigen::Vector3d>& direction,
+                                                             double min_projected_length) {
+  std::vector<LineFieldSingularity> singularities;
+  const TriMesh& mesh = surface.mesh();
+  for (const auto v : mesh.vertices()) {
+    if (mesh.is_boundary(v)) continue;
+    std::vector<double> doubled;
+    bool usable = true;
+    int first_face = -1;
+    for (const auto f : mesh.vf_ccw_range(v)) {
+      if (first_face < 0) first_face = f.idx();
+      const Eigen::Vector2d d = direction[f.idx()].head<2>();
+      if (d.norm() < min_projected_length) {
+        usable = false;
+        break;
+      }
+      doubled.push_back(2.0 * std::atan2(d.y(), d.x()));
+    }
+    if (!usable || doubled.empty()) continue;
+    double winding = 0.0;
+    for (size_t k = 0; k < doubled.size(); ++k) {
+      const double step = doubled[(k + 1) % doubled.size()] - doubled[k];
+      winding += std::remainder(step, 2.0 * M_PI);
+    }
+    const long turns = std::lround(winding / (2.0 * M_PI));
+    if (turns != 0) {
+      // Counter-clockwise about the normal is counter-clockwise in the top view only where
+      // the surface faces up.
+      const double orientation = surface.face_normal(first_face).z() >= 0 ? 1.0 : -1.0;
+      singularities.push_back({v.idx(), orientation * 0.5 * static_cast<double>(turns), surface.position(v)});
+    }
+  }
+  return singularities;
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,234 @@
+#include "problems/figures.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/streamlines.h"
+#include "geometry/svg_canvas.h"
+
+namespace pqlayout {
+namespace {
+
+using Eigen::Vector2d;
+using Rings = std::vector<std::vector<Vector2d>>;
+
+constexpr int kColourLevels = 64;             // colour quantisation of the resampled grid
+constexpr double kNotEnforcedWeight = 0.5;    // weight below this: alignment not enforced
+constexpr double kSignedTolerance = 1e-3;     // a sign counts above this × the other's size
+const Rgb kMutedBrown{0x9c, 0x72, 0x4a};        // hatch of the not-enforced region
+const Rgb kOutline{0, 0, 0};                    // boundary outline
+const Stroke kStreamline{Rgb{0x30, 0x30, 0x30}, 1.1, 0.9};  // integral curves
+
+// The colour map and value range for a field: a symmetric diverging map for values of
+// both signs, viridis from min to max otherwise.
+struct ColourScale {
+  ColourMap map = Viridis;
+  double lo = 0.0, hi = 1.0;
+  double T(double value) const { return hi > lo ? (value - lo) / (hi - lo) : 0.5; }
+};
+
+ColourScale ScaleFor(const std::vector<double>& values, bool allow_diverging) {
+  const auto [min_it, max_it] = std::minmax_element(values.begin(), values.end());
+  ColourScale scale{Viridis, *min_it, *max_it};
+  const double extent = std::max(-scale.lo, scale.hi);
+  if (allow_diverging && -scale.lo > kSignedTolerance * extent &&
+      scale.hi > kSignedTolerance * extent)
+    scale = {BlueWhiteRed, -extent, extent};
+  if (!(scale.hi > scale.lo)) {  // constant field: a unit-wide range around it
+    const double pad = std::max(0.5 * std::abs(scale.lo), 1e-12);
+    scale.lo -= pad;
+    scale.hi += pad;
+  }
+  return scale;
+}
+
+Vector2d Xy(const SurfaceModel& surface, int v) { return surface.position(v).head<2>(); }
+
+Eigen::AlignedBox2d TopViewBounds(const SurfaceModel& surface) {
+  return Eigen::AlignedBox2d(surface.bbox_min().head<2>(), surface.bbox_max().head<2>());
+}
+
+// Fills every face with its own polygon.
+void DrawFacePolygons(const SurfaceModel& surface, const std::vector<double>& face_values,
+                      const ColourScale& scale, SvgCanvas* canvas) {
+  std::vector<Vector2d> triangle(3);
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const auto ids = surface.face_vertices(f);
+    for (int k = 0; k < 3; ++k) triangle[k] = Xy(surface, ids[k]);
+    canvas->Polygon(triangle, scale.map(scale.T(face_values[f])));
+  }
+}
+
+// Indices i whose cell centre (i + ½)·cell lies in [lo, hi] (both in cells), within [0, n).
+std::pair<int, int> CentresWithin(double lo, double hi, int n) {
+  return {std::max(0, static_cast<int>(std::ceil(lo - 0.5))),
+          std::min(n - 1, static_cast<int>(std::floor(hi - 0.5)))};
+}
+
+double Cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Colour level (0..kColourLevels-1) of every grid cell whose centre lies in a face, -1
+// elsewhere; cells of size `cell` metres cover `box` row by row from its min corner.
+std::vector<int> RasteriseLevels(const SurfaceModel& surface, const std::vector<double>& face_values,
+                                 const ColourScale& scale, const Eigen::AlignedBox2d& box,
+                                 double cell, int nx, int ny) {
+  constexpr double kTolerance = 1e-9;  // centres on a shared edge belong to both faces
+  std::vector<int> level(static_cast<size_t>(nx) * ny, -1);
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const auto ids = surface.face_vertices(f);
+    const Vector2d a = Xy(surface, ids[0]), b = Xy(surface, ids[1]), c = Xy(surface, ids[2]);
+    const double area = Cross(b - a, c - a);
+    if (area == 0.0) continue;
+    const Vector2d lo = (a.cwiseMin(b).cwiseMin(c) - box.min()) / cell;
+    const Vector2d hi = (a.cwiseMax(b).cwiseMax(c) - box.min()) / cell;
+    const auto [i0, i1] = CentresWithin(lo.x(), hi.x(), nx);
+    const auto [j0, j1] = CentresWithin(lo.y(), hi.y(), ny);
+    const int t = std::clamp(static_cast<int>(scale.T(face_values[f]) * kColourLevels), 0,
+                             kColourLevels - 1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const Vector2d p = box.min() + cell * Vector2d(i + 0.5, j + 0.5);
+        const double l0 = Cross(b - p, c - p) / area, l1 = Cross(c - p, a - p) / area;
+        if (l0 >= -kTolerance && l1 >= -kTolerance && l0 + l1 <= 1.0 + kTolerance)
+          level[static_cast<size_t>(j) * nx + i] = t;
+      }
+  }
+  return level;
+}
+
+// Resamples the face colours onto a grid of small squares and merges runs of equal colour
+// along each row into one box; one <path> per colour level.
+void DrawResampledColours(const SurfaceModel& surface, const std::vector<double>& face_values,
+                          const ColourScale& scale, const FigureOptions& options, SvgCanvas* canvas) {
+  const Eigen::AlignedBox2d box = TopViewBounds(surface);
+  const double cell = options.grid_cell_px * canvas->unit() / canvas->px_per_metre();
+  const int nx = std::max(1, static_cast<int>(std::ceil(box.sizes().x() / cell)));
+  const int ny = std::max(1, static_cast<int>(std::ceil(box.sizes().y() / cell)));
+  const std::vector<int> level = RasteriseLevels(surface, face_values, scale, box, cell, nx, ny);
+  std::vector<std::vector<Eigen::AlignedBox2d>> boxes(kColourLevels);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx;) {
+      const int t = level[static_cast<size_t>(j) * nx + i];
+      int end = i + 1;
+      while (end < nx && level[static_cast<size_t>(j) * nx + end] == t) ++end;
+      if (t >= 0)
+        boxes[t].emplace_back(box.min() + cell * Vector2d(i, j), box.min() + cell * Vector2d(end, j + 1));
+      i = end;
+    }
+  for (int t = 0; t < kColourLevels; ++t)
+    canvas->Boxes(boxes[t], scale.map((t + 0.5) / kColourLevels));
+}
+
+void DrawFaceColours(const SurfaceModel& surface, const std::vector<double>& face_values,
+                     const ColourScale& scale, const FigureOptions& options, SvgCanvas* canvas) {
+  if (surface.num_faces() <= options.max_face_polygons)
+    DrawFacePolygons(surface, face_values, scale, canvas);
+  else
+    DrawResampledColours(surface, face_values, scale, options, canvas);
+}
+
+// The outline of a set of faces as closed rings (outer rings and holes), walking the
+// halfedges that have a face of the set on their left and none on their right.
+Rings RegionOutline(const SurfaceModel& surface, const std::vector<char>& in_region) {
+  const TriMesh& mesh = surface.mesh();
+  const auto inside = [&](HalfedgeHandle h) {
+    const FaceHandle f = mesh.face_handle(h);
+    return f.is_valid() && in_region[f.idx()];
+  };
+  const auto next_on_outline = [&](HalfedgeHandle h) {
+    HalfedgeHandle n = mesh.next_halfedge_handle(h);
+    while (inside(mesh.opposite_halfedge_handle(n)))
+      n = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(n));
+    return n;
+  };
+  std::vector<char> used(mesh.n_halfedges(), 0);
+  Rings rings;
+  for (const auto start : mesh.halfedges()) {
+    if (used[start.idx()] || !inside(start) || inside(mesh.opposite_halfedge_handle(start))) continue;
+    std::vector<Vector2d> ring;
+    for (HalfedgeHandle h = start; !used[h.idx()]; h = next_on_outline(h)) {
+      used[h.idx()] = 1;
+      ring.push_back(Xy(surface, mesh.from_vertex_handle(h).idx()));
+    }
+    rings.push_back(std::move(ring));
+  }
+  return rings;
+}
+
+Rings BoundaryOutline(const SurfaceModel& surface) {
+  Rings rings;
+  for (const auto& loop : surface.boundary_loops()) {
+    std::vector<Vector2d> ring;
+    for (const auto v : loop.vertices) ring.push_back(Xy(surface, v.idx()));
+    rings.push_back(std::move(ring));
+  }
+  return rings;
+}
+
+void DrawFrame(const SurfaceModel& surface, const ColourScale& scale, const std::string& label,
+               SvgCanvas* canvas) {
+  canvas->Polylines(BoundaryOutline(surface), Stroke{kOutline, SvgStyle::kOutlineWidth, 1.0}, true);
+  canvas->ColourBar(scale.map, scale.lo, scale.hi, label);
+  canvas->ScaleBar();
+  canvas->NorthArrow();
+}
+
+Status CheckFinite(const std::vector<double>& values, int expected, const std::string& name,
+                   const std::string& element) {
+  if (static_cast<int>(values.size()) != expected)
+    return Status::InvalidInput(name + " has " + std::to_string(values.size()) + " values, expected " +
+                                std::to_string(expected) + " (one per " + element + ")");
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      return Status::InvalidInput(name + " is not finite at " + element + " " + std::to_string(i));
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status WriteDisplacementFigure(const SurfaceModel& surface, const std::vector<double>& v_z,
+                               const std::string& title, const std::string& path,
+                               const FigureOptions& options) {
+  PQ_RETURN_IF_ERROR(CheckFinite(v_z, surface.num_vertices(), "v_z", "vertex").WithContext(path));
+  std::vector<double> vertex_mm(v_z.size()), face_mm(surface.num_faces());
+  std::transform(v_z.begin(), v_z.end(), vertex_mm.begin(), [](double v) { return 1000.0 * v; });
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const auto ids = surface.face_vertices(f);
+    face_mm[f] = (vertex_mm[ids[0]] + vertex_mm[ids[1]] + vertex_mm[ids[2]]) / 3.0;
+  }
+  const ColourScale scale = ScaleFor(vertex_mm, /*allow_diverging=*/true);
+  SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
+  DrawFaceColours(surface, face_mm, scale, options, &canvas);
+  DrawFrame(surface, scale, "v_z [mm]", &canvas);
+  return canvas.Write(path);
+}
+
+Status WriteGuidanceFigure(const SurfaceModel& surface, const std::vector<Eigen::Vector3d>& direction,
+                           const std::vector<double>& magnitude, const std::string& magnitude_label,
+                           const std::vector<double>& weight, const std::string& title,
+                           const std::string& path, const FigureOptions& options) {
+  const int nf = surface.num_faces();
+  if (static_cast<int>(direction.size()) != nf)
+    return Status::InvalidInput(path + ": direction has " + std::to_string(direction.size()) +
+                                " vectors, expected " + std::to_string(nf) + " (one per face)");
+  PQ_RETURN_IF_ERROR(CheckFinite(magnitude, nf, magnitude_label, "face").WithContext(path));
+  PQ_RETURN_IF_ERROR(CheckFinite(weight, nf, "weight", "face").WithContext(path));
+  const ColourScale scale = ScaleFor(magnitude, /*allow_diverging=*/false);
+  SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
+  DrawFaceColours(surface, magnitude, scale, options, &canvas);
+
+  std::vector<char> not_enforced(nf);
+  for (int f = 0; f < nf; ++f) not_enforced[f] = weight[f] < kNotEnforcedWeight;
+  const std::string hatch = canvas.HatchFill(kMutedBrown);
+  canvas.Region(RegionOutline(surface, not_enforced), hatch);
+
+  StreamlineOptions streamlines;
+  streamlines.separation = options.streamline_spacing_px * canvas.unit() / canvas.px_per_metre();
+  canvas.HaloPolylines(EvenlySpacedStreamlines(surface, direction, streamlines), kStreamline);
+
+  DrawFrame(surface, scale, magnitude_label, &canvas);
+  canvas.Legend({{hatch, "alignment not enforced (weight < 0.5)"}});
+  return canvas.Write(path);
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,49 @@
+// Figure compositions for the pipeline stages, drawn as self-contained SVG top views
+// (SvgCanvas): the membrane displacement v_z (paper Fig. 3) and the guidance field with
+// its integral curves and the regions where alignment is not enforced (paper Fig. 6).
+//
+// Size: up to FigureOptions::max_face_polygons faces every face is one <path> element
+// (~65 bytes); above, faces are too small to see one by one anyway (200k faces on a
+// 1000 px drawing are ~2 px each), so the colour field is resampled onto a regular grid
+// of grid_cell_px squares in the top view, quantised to 64 colour levels, and runs of
+// equal colour along a row are merged into one box. Regions (the low-weight faces) are
+// drawn as their merged outline, streamlines at a density set in px. A 1M-triangle input
+// thus gives a file of a few MB, independent of the face count.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/status.h"
+#include "geometry/surface_model.h"
+
+namespace pqlayout {
+
+struct FigureOptions {
+  double width_px = 1000.0;             // drawing width; fonts, strokes, spacings scale with it
+  int max_face_polygons = 200000;       // above this face count, resample onto a grid
+  double grid_cell_px = 2.0;            // grid square size (px of a 1000 px drawing)
+  double streamline_spacing_px = 16.0;  // distance between integral curves (px of 1000 px)
+};
+
+// Paper Fig. 3: top view, v_z per vertex (metres) as a colour map (faces coloured by the
+// mean of their vertices; values of both signs use a diverging map symmetric about 0,
+// one-signed values viridis), colour bar "v_z [mm]", title, scale bar, north arrow,
+// boundary outline in black. InvalidInput if v_z does not have one finite value per vertex.
+Status WriteDisplacementFigure(const SurfaceModel& surface, const std::vector<double>& v_z,
+                               const std::string& title, const std::string& path,
+                               const FigureOptions& options = {});
+
+// Paper Fig. 6: top view; faces coloured by `magnitude` (viridis, colour bar labelled
+// `magnitude_label`); faces with weight < 0.5 (alignment not enforced) hatched in a muted
+// brown with a legend entry; evenly spaced integral curves of the line field `direction`
+// in dark grey on top; boundary outline; scale bar; north arrow; title. InvalidInput if a
+// per-face input does not have one finite value per face.
+Status WriteGuidanceFigure(const SurfaceModel& surface, const std::vector<Eigen::Vector3d>& direction,
+                           const std::vector<double>& magnitude, const std::string& magnitude_label,
+                           const std::vector<double>& weight, const std::string& title,
+                           const std::string& path, const FigureOptions& options = {});
+
+}  // namespace pqlayout

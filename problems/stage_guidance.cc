@@ -1,0 +1,230 @@
+// Stage `guidance`: see problems/guidance.h.
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "geometry/differential_operators.h"
+#include "geometry/field_writers.h"
+#include "geometry/line_field_singularities.h"
+#include "geometry/principal_directions.h"
+#include "geometry/scalar_field_extrema.h"
+#include "problems/guidance.h"
+#include "problems/stages.h"
+
+namespace pqlayout {
+
+std::vector<double> AlignmentWeights(const std::vector<double>& magnitude, double scale, double threshold,
+                                     double ramp) {
+  std::vector<double> weight(magnitude.size(), 0.0);
+  if (!(scale > 0.0)) return weight;
+  for (size_t f = 0; f < magnitude.size(); ++f) {
+    const double relative = magnitude[f] / scale;
+    if (ramp > 0.0) weight[f] = std::clamp((relative - threshold) / ramp, 0.0, 1.0);
+    else weight[f] = relative >= threshold ? 1.0 : 0.0;
+  }
+  return weight;
+}
+
+namespace {
+
+void Resize(int faces, GuidanceField* field) {
+  field->direction.assign(faces, Eigen::Vector3d::Zero());
+  field->major.assign(faces, 0.0);
+  field->minor.assign(faces, 0.0);
+  field->magnitude.assign(faces, 0.0);
+}
+
+}  // namespace
+
+Status ComputeStrainGuidance(const SurfaceModel& surface, const std::vector<double>& v_z,
+                             const GuidanceOptions& options, GuidanceField* field) {
+  Resize(surface.num_faces(), field);
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const Eigen::Vector3d& n = surface.face_normal(f);
+    const Eigen::Vector3d grad = FaceGradient(surface, f, v_z);
+    const TangentEigen strain = DecomposeOnTangentPlane(GreenLagrangeStrain(n, grad), n);
+    // Orientation (paper): ⟨e_max, P v⟩ > 0 with v the face's mean displacement. On a face
+    // parallel to the ground P v vanishes; there the gradient of v_z decides instead.
+    const auto ids = surface.face_vertices(f);
+    const double mean_vz = (v_z[ids[0]] + v_z[ids[1]] + v_z[ids[2]]) / 3.0;
+    const Eigen::Vector3d Pv = mean_vz * (Eigen::Vector3d::UnitZ() - n * n.z());
+    const bool flat = Pv.norm() <= 1e-9 * std::abs(mean_vz);
+    const double side = flat ? strain.major_direction.dot(grad) : strain.major_direction.dot(Pv);
+    field->direction[f] = side < 0.0 ? -strain.major_direction : strain.major_direction;
+    field->major[f] = strain.major;
+    field->minor[f] = strain.minor;
+    field->magnitude[f] = std::abs(strain.major);
+  }
+  field->scale = *std::max_element(field->magnitude.begin(), field->magnitude.end());
+  field->weight = AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
+  return Status::Ok();
+}
+
+Status ComputeCurvatureGuidance(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field) {
+  Resize(surface.num_faces(), field);
+  const std::vector<Eigen::Matrix3d> shape = FaceShapeOperators(surface);
+  field->scale = 0.0;
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const TangentEigen curvature = DecomposeOnTangentPlane(shape[f], surface.face_normal(f));
+    field->direction[f] = curvature.major_direction;
+    field->major[f] = curvature.major;
+    field->minor[f] = curvature.minor;
+    field->magnitude[f] = std::abs(curvature.major - curvature.minor);
+    field->scale = std::max(field->scale, std::abs(curvature.major) + std::abs(curvature.minor));
+  }
+  field->weight = AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
+  return Status::Ok();
+}
+
+Status ReadGuidanceFile(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field) {
+  const std::string& path = options.file;
+  if (path.empty()) return Status::InvalidInput("guidance.file: required when guidance.source is file");
+  std::ifstream in(path);
+  if (!in) return Status::InvalidInput(path + ": guidance file not found");
+  Resize(surface.num_faces(), field);
+  std::vector<double> given_weight(surface.num_faces(), -1.0);
+  std::vector<char> seen(surface.num_faces(), 0);
+  std::string line;
+  bool has_weights = false;
+  for (int line_number = 1; std::getline(in, line); ++line_number) {
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream words(line);
+    std::vector<double> values;
+    std::string word;
+    bool numeric = true;
+    while (words >> word) {
+      char* end = nullptr;
+      values.push_back(std::strtod(word.c_str(), &end));
+      numeric = numeric && *end == '\0';
+    }
+    if (values.empty() || (!numeric && line_number == 1)) continue;  // blank line or header
+    const std::string where = path + ":" + std::to_string(line_number) + ": ";
+    if (!numeric || (values.size() != 4 && values.size() != 5))
+      return Status::InvalidInput(where + "expected id,dx,dy,dz[,weight]");
+    const int f = static_cast<int>(values[0]);
+    if (values[0] != f || f < 0 || f >= surface.num_faces())
+      return Status::InvalidInput(where + "face id " + word + " out of range (the surface has " +
+                                  std::to_string(surface.num_faces()) + " faces)");
+    if (seen[f]) return Status::InvalidInput(where + "face " + std::to_string(f) + " appears twice");
+    seen[f] = 1;
+    const Eigen::Vector3d& n = surface.face_normal(f);
+    const Eigen::Vector3d d(values[1], values[2], values[3]);
+    const Eigen::Vector3d tangent = d - n * n.dot(d);
+    field->magnitude[f] = tangent.norm();
+    if (tangent.norm() > 0.0) field->direction[f] = tangent.normalized();
+    if (values.size() == 5) {
+      if (!(values[4] >= 0.0 && values[4] <= 1.0))
+        return Status::InvalidInput(where + "weight must be in [0, 1]");
+      given_weight[f] = values[4];
+      has_weights = true;
+    }
+  }
+  const auto missing = std::find(seen.begin(), seen.end(), 0);
+  if (missing != seen.end())
+    return Status::InvalidInput(path + ": no direction for face " + std::to_string(missing - seen.begin()));
+  field->scale = *std::max_element(field->magnitude.begin(), field->magnitude.end());
+  field->weight = has_weights ? given_weight : AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
+  return Status::Ok();
+}
+
+namespace {
+
+std::vector<double> ReadVertexField(SurfaceModel& surface, const std::string& name) {
+  auto property = surface.VertexField<double>(name);
+  std::vector<double> values(surface.num_vertices());
+  for (int v = 0; v < surface.num_vertices(); ++v) values[v] = property[VertexHandle(v)];
+  return values;
+}
+
+Status WriteGuidanceOutputs(const SurfaceModel& surface, const std::vector<double>& v_z, const GuidanceField& g,
+                            OutputFiles* out) {
+  std::vector<double> x(surface.num_vertices()), y(x.size()), z(x.size()), zero(x.size(), 0.0);
+  std::vector<Eigen::Vector3d> displacement(x.size());
+  for (int v = 0; v < surface.num_vertices(); ++v) {
+    const Eigen::Vector3d p = surface.position(v);
+    x[v] = p.x(), y[v] = p.y(), z[v] = p.z();
+    displacement[v] = Eigen::Vector3d(0.0, 0.0, v_z[v]);
+  }
+  PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "x", "y", "z", "vx", "vy", "vz"}, {&x, &y, &z, &zero, &zero, &v_z},
+                                   out->Path("fields/vertices.csv")));
+  std::vector<double> dx(surface.num_faces()), dy(dx.size()), dz(dx.size());
+  for (int f = 0; f < surface.num_faces(); ++f) dx[f] = g.direction[f].x(), dy[f] = g.direction[f].y(), dz[f] = g.direction[f].z();
+  PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "dx", "dy", "dz", "strain_max", "strain_min", "weight"},
+                                   {&dx, &dy, &dz, &g.major, &g.minor, &g.weight}, out->Path("fields/faces.csv")));
+  SurfaceFields fields;
+  fields.vertex_scalars = {{"v_z", v_z}};
+  fields.vertex_vectors = {{"displacement", displacement}};
+  fields.face_vectors = {{"guidance", g.direction}};
+  fields.face_scalars = {{"strain_max", g.major}, {"strain_min", g.minor}, {"magnitude", g.magnitude}, {"weight", g.weight}};
+  return WriteFieldsVtk(surface, fields, out->Path("fields.vtk"));
+}
+
+nlohmann::json SingularityMetrics(const SurfaceModel& surface, const GuidanceField& g) {
+  const auto singularities = FindLineFieldSingularities(surface, g.direction);
+  nlohmann::json list = nlohmann::json::array();
+  std::map<std::string, int> by_index;
+  for (const auto& s : singularities) {
+    std::ostringstream index;
+    index << std::showpos << s.index;
+    ++by_index[index.str()];
+    list.push_back({{"vertex", s.vertex}, {"index", s.index}, {"x", s.position.x()}, {"y", s.position.y()}});
+  }
+  return {{"count", singularities.size()}, {"by_index", by_index}, {"list", list}};
+}
+
+// The sources of the strain field (paper Fig. 6): where the strain vanishes, at the
+// interior extrema of the membrane displacement, counted robustly (persistence > 2 % of
+// the largest displacement).
+nlohmann::json SourceMetrics(const SurfaceModel& surface, const std::vector<double>& v_z) {
+  const double largest = std::abs(*std::min_element(v_z.begin(), v_z.end()));
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& m : PersistentMinima(surface, v_z, 0.02 * largest)) {
+    const Eigen::Vector3d p = surface.position(m.vertex);
+    list.push_back({{"vertex", m.vertex}, {"x", p.x()}, {"y", p.y()}, {"v_z", m.value}});
+  }
+  return list;
+}
+
+}  // namespace
+
+Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
+  SurfaceModel& surface = *state->surface;
+  const GuidanceOptions& options = state->config.guidance;
+  const std::vector<double> v_z = ReadVertexField(surface, "v_z");
+  GuidanceField& g = state->guidance;
+  if (options.source == "strain") PQ_RETURN_IF_ERROR(ComputeStrainGuidance(surface, v_z, options, &g));
+  else if (options.source == "curvature") PQ_RETURN_IF_ERROR(ComputeCurvatureGuidance(surface, options, &g));
+  else PQ_RETURN_IF_ERROR(ReadGuidanceFile(surface, options, &g));
+
+  double weight_sum = 0.0, area_above_half = 0.0;
+  int faces_above_half = 0;
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    weight_sum += g.weight[f];
+    if (g.weight[f] > 0.5) {
+      ++faces_above_half;
+      area_above_half += surface.face_area(f);
+    }
+  }
+  *metrics = {{"source", options.source},
+              {"scale", g.scale},
+              {"max_principal", g.major.empty() ? 0.0 : *std::max_element(g.magnitude.begin(), g.magnitude.end())},
+              {"weight_mean", weight_sum / surface.num_faces()},
+              {"faces_weight_above_half", static_cast<double>(faces_above_half) / surface.num_faces()},
+              {"area_weight_above_half", area_above_half / surface.total_area()},
+              {"singularities", SingularityMetrics(surface, g)}};
+  if (options.source == "strain") {
+    (*metrics)["sources"] = SourceMetrics(surface, v_z);
+    (*metrics)["n_sources"] = (*metrics)["sources"].size();
+  }
+  LOG(INFO) << "guidance: " << options.source << ", " << 100.0 * faces_above_half / surface.num_faces()
+            << " % of faces with weight > 0.5, " << (*metrics)["singularities"]["count"] << " singularities "
+            << (*metrics)["singularities"]["by_index"].dump()
+            << (options.source == "strain" ? ", " + (*metrics)["n_sources"].dump() + " sources (displacement extrema)" : "");
+  return WriteGuidanceOutputs(surface, v_z, g, out);
+}
+
+}  // namespace pqlayout

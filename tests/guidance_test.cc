@@ -1,0 +1,204 @@
+// Guidance fields: the Green–Lagrange tensor, principal strain directions on the flat disk
+// (radial, ε_max = ½|∇v_z|²), curvature directions on a cylinder and a sphere, weights, the
+// CSV source, line-field singularities and persistent minima.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "geometry/differential_operators.h"
+#include "geometry/line_field_singularities.h"
+#include "geometry/principal_directions.h"
+#include "geometry/scalar_field_extrema.h"
+#include "geometry/surface_generators.h"
+#include "problems/guidance.h"
+#include "problems/membrane.h"
+#include "tests/test_meshes.h"
+
+namespace pqlayout {
+namespace {
+
+TriMesh Generate(const std::string& name, double width, double depth, double rise, double edge) {
+  GeneratorParams p;
+  p.name = name;
+  p.width = width;
+  p.depth = depth;
+  p.rise = rise;
+  p.edge_length = edge;
+  TriMesh mesh;
+  const Status s = GenerateSurface(p, &mesh);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return mesh;
+}
+
+double AngleBetweenLinesDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::min(1.0, std::abs(a.normalized().dot(b.normalized())))) * 180.0 / M_PI;
+}
+
+TEST(GreenLagrange, KernelSymmetryAndLengthDiscrepancy) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> gauss;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Vector3d n = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
+    const Eigen::Vector3d g = P * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+    const Eigen::Matrix3d eps = GreenLagrangeStrain(n, g);
+    EXPECT_NEAR((eps - eps.transpose()).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((eps * n).norm(), 0.0, 1e-14);
+    // tᵀ ε t = ½ (|DT t|² − |t|²) for tangent t, DT t = t + e_z (g·t): the membrane strain.
+    const Eigen::Vector3d t = P * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+    const Eigen::Vector3d mapped = t + Eigen::Vector3d::UnitZ() * g.dot(t);
+    EXPECT_NEAR(t.dot(eps * t), 0.5 * (mapped.squaredNorm() - t.squaredNorm()), 1e-13);
+  }
+}
+
+TEST(StrainGuidance, FlatDiskIsRadialWithHalfSquaredGradient) {
+  const SurfaceModel s(Generate("disk", 2.0, 0.0, 0.0, 0.05));
+  VertexConditions supports(s.num_vertices());
+  for (int v = 0; v < s.num_vertices(); ++v)
+    if (s.is_boundary(v)) supports[v] = BoundaryCondition::kFixed;
+  MembraneOptions membrane;
+  membrane.stiffness = 100.0;
+  MembraneSolution solution;
+  ASSERT_TRUE(SolveMembrane(s, supports, membrane, 1350.0, &solution).ok());
+  GuidanceField g;
+  ASSERT_TRUE(ComputeStrainGuidance(s, solution.v_z, GuidanceOptions(), &g).ok());
+  double angle_sum = 0.0, worst_strain_error = 0.0;
+  int counted = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto ids = s.face_vertices(f);
+    const Eigen::Vector3d centre = (s.position(ids[0]) + s.position(ids[1]) + s.position(ids[2])) / 3.0;
+    if (centre.norm() <= 0.2) continue;
+    angle_sum += AngleBetweenLinesDeg(g.direction[f], Eigen::Vector3d(centre.x(), centre.y(), 0.0));
+    ++counted;
+    const double half_squared_gradient = 0.5 * FaceGradient(s, f, solution.v_z).squaredNorm();
+    worst_strain_error = std::max(worst_strain_error, std::abs(g.major[f] - half_squared_gradient) / half_squared_gradient);
+    // Paper's orientation, with the flat-face fallback: towards increasing v_z (outwards).
+    EXPECT_GT(g.direction[f].dot(centre), 0.0);
+  }
+  EXPECT_LE(angle_sum / counted, 1.0) << "mean angle error, degrees";
+  EXPECT_LE(worst_strain_error, 0.02);
+  std::cout << "disk: mean radial angle error " << angle_sum / counted << "°, worst |ε_max − ½|∇v|²| / ½|∇v|² "
+            << worst_strain_error << "\n";
+}
+
+TEST(CurvatureGuidance, CylinderFollowsTheCurvedDirection) {
+  // A barrel vault curves in x and is straight along y.
+  const SurfaceModel s(Generate("barrel", 10.0, 12.0, 3.0, 0.4));
+  GuidanceField g;
+  ASSERT_TRUE(ComputeCurvatureGuidance(s, GuidanceOptions(), &g).ok());
+  double worst = 0.0, sum = 0.0;
+  int high_weight = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const Eigen::Vector3d& n = s.face_normal(f);
+    const Eigen::Vector3d around = Eigen::Vector3d::UnitY().cross(n);  // the circle's tangent
+    const double angle = AngleBetweenLinesDeg(g.direction[f], around);
+    worst = std::max(worst, angle);
+    sum += angle;
+    high_weight += g.weight[f] == 1.0;
+  }
+  std::cout << "cylinder: mean angle " << sum / s.num_faces() << "°, worst " << worst << "°\n";
+  EXPECT_LE(sum / s.num_faces(), 1.0);  // measured 0.25°
+  EXPECT_LE(worst, 5.0);                // measured 3.6°, on faces at the boundary
+  EXPECT_GT(high_weight, 0.95 * s.num_faces());
+}
+
+TEST(CurvatureGuidance, SphereHasNoPreferredDirection) {
+  // A spherical cap of radius 10 over the disk of radius 6.
+  TriMesh mesh = Generate("disk", 12.0, 0.0, 0.0, 0.3);
+  for (const auto v : mesh.vertices()) {
+    auto p = mesh.point(v);
+    p[2] = std::sqrt(100.0 - p[0] * p[0] - p[1] * p[1]);
+    mesh.set_point(v, p);
+  }
+  const SurfaceModel s(std::move(mesh));
+  GuidanceField g;
+  ASSERT_TRUE(ComputeCurvatureGuidance(s, GuidanceOptions(), &g).ok());
+  EXPECT_NEAR(g.scale, 0.2, 0.02);  // max |κ1| + |κ2| = 2/R
+  double worst_weight = 0.0;
+  for (const double w : g.weight) worst_weight = std::max(worst_weight, w);
+  EXPECT_LE(worst_weight, 0.05);
+}
+
+TEST(Guidance, WeightsRampFromThreshold) {
+  const std::vector<double> magnitude{0.0, 0.1, 0.2, 0.25, 0.3, 0.9, 1.0};
+  const auto w = AlignmentWeights(magnitude, 1.0, 0.2, 0.1);
+  const std::vector<double> expected{0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0};
+  for (size_t i = 0; i < w.size(); ++i) EXPECT_NEAR(w[i], expected[i], 1e-12) << i;
+  const auto step = AlignmentWeights(magnitude, 2.0, 0.2, 0.0);  // relative 0, .05, .1, .125, .15, .45, .5
+  EXPECT_EQ(step, (std::vector<double>{0, 0, 0, 0, 0, 1, 1}));
+}
+
+TEST(Guidance, FileSourceProjectsOntoFacesAndNamesErrors) {
+  const auto dir = testing::TempDir();
+  const SurfaceModel s(testing::ToMesh(testing::GridSoup(2, [](double x, double) { return x; })));
+  std::string csv = "id,dx,dy,dz\n";
+  for (int f = 0; f < s.num_faces(); ++f) csv += std::to_string(f) + ",0,0,1\n";  // e_z onto the plane z = x
+  GuidanceOptions options;
+  options.file = testing::WriteFile(dir, "g.csv", csv);
+  GuidanceField g;
+  ASSERT_TRUE(ReadGuidanceFile(s, options, &g).ok());
+  for (int f = 0; f < s.num_faces(); ++f) {
+    EXPECT_NEAR((g.direction[f] - Eigen::Vector3d(1, 0, 1).normalized()).norm(), 0.0, 1e-12);
+    EXPECT_EQ(g.weight[f], 1.0);
+  }
+  options.file = testing::WriteFile(dir, "short.csv", "0,1,0,0\n");
+  EXPECT_NE(ReadGuidanceFile(s, options, &g).message().find("no direction for face 1"), std::string::npos);
+  options.file = testing::WriteFile(dir, "bad.csv", "0,1,0,0\n99,1,0,0\n");
+  EXPECT_NE(ReadGuidanceFile(s, options, &g).message().find("bad.csv:2: face id"), std::string::npos);
+  options.file = dir + "/none.csv";
+  EXPECT_EQ(ReadGuidanceFile(s, options, &g).code(), StatusCode::kInvalidInput);
+}
+
+std::vector<Eigen::Vector3d> FieldOnFaces(const SurfaceModel& s, Eigen::Vector3d (*field)(const Eigen::Vector3d&)) {
+  std::vector<Eigen::Vector3d> d(s.num_faces());
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto ids = s.face_vertices(f);
+    d[f] = field((s.position(ids[0]) + s.position(ids[1]) + s.position(ids[2])) / 3.0);
+  }
+  return d;
+}
+
+TEST(LineFieldSingularities, IndicesOfSourceSaddleAndWedge) {
+  const SurfaceModel s(Generate("disk", 2.0, 0.0, 0.0, 0.1));
+  auto single = [&](Eigen::Vector3d (*field)(const Eigen::Vector3d&)) {
+    const auto found = FindLineFieldSingularities(s, FieldOnFaces(s, field));
+    double total = 0.0;
+    for (const auto& x : found) total += x.index;
+    EXPECT_EQ(found.size(), 1u);
+    if (!found.empty()) EXPECT_LT(found[0].position.norm(), 0.15);
+    return total;
+  };
+  EXPECT_EQ(single([](const Eigen::Vector3d& p) { return Eigen::Vector3d(p.x(), p.y(), 0); }), 1.0);   // source
+  EXPECT_EQ(single([](const Eigen::Vector3d& p) { return Eigen::Vector3d(p.x(), -p.y(), 0); }), -1.0); // saddle
+  // Line field at half the polar angle: the ½ singularity of a wedge.
+  EXPECT_EQ(single([](const Eigen::Vector3d& p) {
+              const double half = 0.5 * std::atan2(p.y(), p.x());
+              return Eigen::Vector3d(std::cos(half), std::sin(half), 0);
+            }),
+            0.5);
+  // A constant field has none, whatever sign each face carries.
+  std::vector<Eigen::Vector3d> constant(s.num_faces(), Eigen::Vector3d::UnitX());
+  for (int f = 0; f < s.num_faces(); f += 3) constant[f] = -constant[f];
+  EXPECT_TRUE(FindLineFieldSingularities(s, constant).empty());
+}
+
+TEST(PersistentMinima, TwoWellsWithNoiseCountTwice) {
+  const SurfaceModel s(Generate("plane", 10.0, 4.0, 0.0, 0.2));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> noise(-1e-3, 1e-3);
+  std::vector<double> values(s.num_vertices());
+  for (int v = 0; v < s.num_vertices(); ++v) {
+    const Eigen::Vector3d p = s.position(v);
+    values[v] = -std::exp(-((p.x() - 2.5) * (p.x() - 2.5) + p.y() * p.y())) -
+                0.8 * std::exp(-((p.x() + 2.5) * (p.x() + 2.5) + p.y() * p.y())) + noise(rng);
+  }
+  const auto minima = PersistentMinima(s, values, 0.02);
+  ASSERT_EQ(minima.size(), 2u);
+  EXPECT_NEAR(s.position(minima[0].vertex).x(), 2.5, 0.3);
+  EXPECT_NEAR(s.position(minima[1].vertex).x(), -2.5, 0.3);
+  EXPECT_NEAR(minima[1].persistence, 0.8, 0.05);
+}
+
+}  // namespace
+}  // namespace pqlayout
