@@ -110,13 +110,6 @@ int DecimalsFor(double step) {
   return std::clamp(static_cast<int>(std::ceil(-std::log10(step) - 1e-9)), 0, 4);
 }
 
-double NiceStep(double raw) {
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  for (const double mantissa : {1.0, 2.0, 5.0})
-    if (mantissa * power >= raw * (1.0 - 1e-9)) return mantissa * power;
-  return 10.0 * power;
-}
-
 Rgb Darker(Rgb c, double factor) {
   return {ToByte(c.r / 255.0 * factor), ToByte(c.g / 255.0 * factor), ToByte(c.b / 255.0 * factor)};
 }
@@ -145,10 +138,15 @@ double NiceScaleBarLength(double world_width) {
 
 std::vector<double> NiceTicks(double lo, double hi, int target) {
   if (!(hi > lo)) return {lo};
-  const double step = NiceStep((hi - lo) / std::max(target - 1, 1));
+  // The largest step (1, 2 or 5 × 10^k) that still gives at least target - 1 ticks.
+  const double p = std::pow(10.0, std::floor(std::log10(hi - lo)));
   std::vector<double> ticks;
-  for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; k += 1.0)
-    ticks.push_back(k * step == 0.0 ? 0.0 : k * step);  // no "-0"
+  for (const double step : {5 * p, 2 * p, p, p / 2, p / 5, p / 10}) {
+    ticks.clear();
+    for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; k += 1.0)
+      ticks.push_back(k == 0.0 ? 0.0 : k * step);  // no "-0"
+    if (static_cast<int>(ticks.size()) >= target - 1) break;
+  }
   return ticks;
 }
 
@@ -296,7 +294,7 @@ void SvgCanvas::HaloPolylines(const std::vector<std::vector<Eigen::Vector2d>>& l
   if (d.empty()) return;
   const std::string id = "l" + std::to_string(next_id_++);
   defs_ += "<path id=\"" + id + "\" d=\"" + d + "\"/>\n";
-  const Stroke halo{Rgb{255, 255, 255}, 3.0 * stroke.width, 0.55 * stroke.opacity};
+  const Stroke halo{Rgb{255, 255, 255}, SvgStyle::kHaloWidthRatio * stroke.width, SvgStyle::kHaloOpacity};
   for (const Stroke& s : {halo, stroke})
     body_ += "<use xlink:href=\"#" + id + "\" " + StrokeAttributes(s, unit()) + "/>\n";
 }
@@ -327,8 +325,8 @@ std::string SvgCanvas::HatchFill(Rgb colour) {
   defs_ += "<pattern id=\"" + id + "\" patternUnits=\"userSpaceOnUse\" width=\"" + s +
            "\" height=\"" + s + "\" patternTransform=\"rotate(45)\"><rect width=\"" + s +
            "\" height=\"" + s + "\" fill=\"" + colour.Hex() +
-           "\" fill-opacity=\"0.45\"/><rect width=\"" + Number(SvgStyle::kHatchWidth * unit()) +
-           "\" height=\"" + s + "\" fill=\"" + Darker(colour, 0.7).Hex() + "\"/></pattern>\n";
+           "\" fill-opacity=\"" + Number(SvgStyle::kHatchOpacity, 2) + "\"/><rect width=\"" + Number(SvgStyle::kHatchWidth * unit()) +
+           "\" height=\"" + s + "\" fill=\"" + Darker(colour, SvgStyle::kHatchLineShade).Hex() + "\"/></pattern>\n";
   return "url(#" + id + ")";
 }
 

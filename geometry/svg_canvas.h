@@ -49,8 +49,12 @@ struct SvgStyle {
   static constexpr double kNorthArrowHeight = 46.0;  // north arrow incl. its "N"
   static constexpr double kOutlineWidth = 1.6;       // boundary outline stroke
   static constexpr double kFaceSeamWidth = 0.5;      // same-colour stroke hiding AA seams
-  static constexpr double kHatchSpacing = 7.0;       // hatch pattern period
-  static constexpr double kHatchWidth = 2.2;         // hatch line width
+  static constexpr double kHatchSpacing = 8.0;       // hatch pattern period
+  static constexpr double kHatchWidth = 1.4;         // hatch line width
+  static constexpr double kHatchOpacity = 0.7;       // opacity of the hatch background
+  static constexpr double kHatchLineShade = 0.7;     // hatch lines: background colour × this
+  static constexpr double kHaloWidthRatio = 2.4;     // halo width / line width (HaloPolylines)
+  static constexpr double kHaloOpacity = 0.4;        // halo opacity
   static constexpr double kMinPointSpacing = 0.6;    // polyline points closer are dropped
   static constexpr const char* kFont = "sans-serif";  // generic family only
   static constexpr const char* kInk = "#222222";      // text and frame colour

@@ -15,7 +15,7 @@ using Rings = std::vector<std::vector<Vector2d>>;
 constexpr int kColourLevels = 64;             // colour quantisation of the resampled grid
 constexpr double kNotEnforcedWeight = 0.5;    // weight below this: alignment not enforced
 constexpr double kSignedTolerance = 1e-3;     // a sign counts above this × the other's size
-const Rgb kMutedBrown{0x9c, 0x72, 0x4a};        // hatch of the not-enforced region
+const Rgb kMutedBrown{0xc4, 0xa2, 0x7a};        // hatch of the not-enforced region
 const Rgb kOutline{0, 0, 0};                    // boundary outline
 const Stroke kStreamline{Rgb{0x30, 0x30, 0x30}, 1.1, 0.9};  // integral curves
 

@@ -12,6 +12,7 @@
 #include "geometry/line_field_singularities.h"
 #include "geometry/principal_directions.h"
 #include "geometry/scalar_field_extrema.h"
+#include "problems/figures.h"
 #include "problems/guidance.h"
 #include "problems/stages.h"
 
@@ -176,15 +177,23 @@ nlohmann::json SingularityMetrics(const SurfaceModel& surface, const GuidanceFie
   return {{"count", singularities.size()}, {"by_index", by_index}, {"list", list}};
 }
 
-// The sources of the strain field (paper Fig. 6): where the strain vanishes, at the
-// interior extrema of the membrane displacement, counted robustly (persistence > 2 % of
-// the largest displacement).
-nlohmann::json SourceMetrics(const SurfaceModel& surface, const std::vector<double>& v_z) {
-  const double largest = std::abs(*std::min_element(v_z.begin(), v_z.end()));
+// The sources of the guidance field (paper Fig. 6): the points where its integral curves
+// converge, i.e. where the field's magnitude (|ε_max|) vanishes. Counted robustly as the
+// interior minima of the magnitude (averaged to the vertices) whose persistence exceeds
+// 2 % of the largest magnitude.
+nlohmann::json SourceMetrics(const SurfaceModel& surface, const GuidanceField& g) {
+  std::vector<double> at_vertex(surface.num_vertices(), 0.0), area(surface.num_vertices(), 0.0);
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    for (const int v : surface.face_vertices(f)) {
+      at_vertex[v] += surface.face_area(f) * g.magnitude[f];
+      area[v] += surface.face_area(f);
+    }
+  }
+  for (int v = 0; v < surface.num_vertices(); ++v) at_vertex[v] /= area[v];
   nlohmann::json list = nlohmann::json::array();
-  for (const auto& m : PersistentMinima(surface, v_z, 0.02 * largest)) {
+  for (const auto& m : PersistentMinima(surface, at_vertex, 0.02 * g.scale)) {
     const Eigen::Vector3d p = surface.position(m.vertex);
-    list.push_back({{"vertex", m.vertex}, {"x", p.x()}, {"y", p.y()}, {"v_z", m.value}});
+    list.push_back({{"vertex", m.vertex}, {"x", p.x()}, {"y", p.y()}, {"magnitude", m.value}});
   }
   return list;
 }
@@ -216,15 +225,19 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
               {"faces_weight_above_half", static_cast<double>(faces_above_half) / surface.num_faces()},
               {"area_weight_above_half", area_above_half / surface.total_area()},
               {"singularities", SingularityMetrics(surface, g)}};
-  if (options.source == "strain") {
-    (*metrics)["sources"] = SourceMetrics(surface, v_z);
-    (*metrics)["n_sources"] = (*metrics)["sources"].size();
-  }
+  (*metrics)["sources"] = SourceMetrics(surface, g);
+  (*metrics)["n_sources"] = (*metrics)["sources"].size();
   LOG(INFO) << "guidance: " << options.source << ", " << 100.0 * faces_above_half / surface.num_faces()
             << " % of faces with weight > 0.5, " << (*metrics)["singularities"]["count"] << " singularities "
             << (*metrics)["singularities"]["by_index"].dump()
-            << (options.source == "strain" ? ", " + (*metrics)["n_sources"].dump() + " sources (displacement extrema)" : "");
-  return WriteGuidanceOutputs(surface, v_z, g, out);
+            << ", " << (*metrics)["n_sources"] << " sources (minima of the field's magnitude)";
+  PQ_RETURN_IF_ERROR(WriteGuidanceOutputs(surface, v_z, g, out));
+  const bool strain = options.source == "strain";
+  const std::string title = strain ? "Guidance: principal strain directions (integral curves)"
+                                   : "Guidance: " + options.source + " directions (integral curves)";
+  const std::string label = strain ? "|ε_max|" : options.source == "curvature" ? "|κ1 − κ2| [1/m]" : "|d|";
+  return WriteGuidanceFigure(surface, g.direction, g.magnitude, label, g.weight, title,
+                             out->Path("figures/guidance.svg"));
 }
 
 }  // namespace pqlayout

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "geometry/differential_operators.h"
+#include "problems/figures.h"
 #include "problems/membrane.h"
 #include "problems/stages.h"
 #include "solver/cholmod_solver.h"
@@ -106,7 +107,10 @@ Status RunMembraneStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   LOG(INFO) << "membrane: " << solution.n_unknowns << " unknowns, " << solution.n_dirichlet
             << " Dirichlet vertices; max |v_z| " << max_abs * 1000.0 << " mm (factor "
             << solution.factor_seconds << " s, residual " << solution.relative_residual << ")";
-  return Status::Ok();
+  return WriteDisplacementFigure(surface, solution.v_z,
+                                 "Membrane displacement v_z under dead load q = " +
+                                     std::to_string(static_cast<int>(state->config.load.q)) + " N/m²",
+                                 out->Path("figures/displacement.svg"));
 }
 
 }  // namespace pqlayout

@@ -154,13 +154,21 @@ TEST(SvgCanvas, ScaleBarLengthIsOneTwoOrFiveTimesAPowerOfTen) {
     EXPECT_GT(length, width / 10.0);
     EXPECT_LT(length, width / 2.0);
   }
-  EXPECT_DOUBLE_EQ(NiceScaleBarLength(73.25), 10.0);
+  EXPECT_DOUBLE_EQ(NiceScaleBarLength(73.25), 20.0);  // nearest in ratio to 14.65
+  EXPECT_DOUBLE_EQ(NiceScaleBarLength(30.0), 5.0);
+}
+
+void ExpectTicks(double lo, double hi, const std::vector<double>& expected) {
+  const std::vector<double> ticks = NiceTicks(lo, hi);
+  ASSERT_EQ(ticks.size(), expected.size()) << lo << " .. " << hi;
+  for (size_t i = 0; i < ticks.size(); ++i) EXPECT_NEAR(ticks[i], expected[i], 1e-12);
 }
 
 TEST(SvgCanvas, TicksAreRoundAndInsideTheRange) {
-  const std::vector<double> ticks = NiceTicks(-12.3, 0.0);
-  EXPECT_EQ(ticks, (std::vector<double>{-12.0, -10.0, -8.0, -6.0, -4.0, -2.0, 0.0}));
-  EXPECT_EQ(NiceTicks(0.0, 1.0), (std::vector<double>{0.0, 0.2, 0.4, 0.6000000000000001, 0.8, 1.0}));
+  ExpectTicks(-12.3, 0.0, {-12, -10, -8, -6, -4, -2, 0});
+  ExpectTicks(0.0, 1.0, {0, 0.2, 0.4, 0.6, 0.8, 1.0});
+  ExpectTicks(0.05, 0.95, {0.2, 0.4, 0.6, 0.8});
+  ExpectTicks(3.0e-5, 4.2e-4, {1e-4, 2e-4, 3e-4, 4e-4});
 }
 
 class SmallMeshFigures : public ::testing::Test {
