@@ -18,7 +18,6 @@
 #include <CGAL/Delaunay_mesh_vertex_base_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/lloyd_optimize_mesh_2.h>
 
 namespace pqlayout {
 namespace {
@@ -37,12 +36,12 @@ using CdtVertex = Cdt::Vertex_handle;
 // Shape bound of Delaunay_mesh_criteria_2: sin²(minimum angle) >= 0.125, i.e. about 20.7°,
 // the largest bound for which Delaunay refinement is guaranteed to terminate.
 constexpr double kShapeBound = 0.125;
-constexpr int kLloydIterations = 10;
 constexpr double kMaxTriangles = 2.0e7;
 // Triangles per (domain area / edge_length²) that the size criterion produces (measured).
-constexpr double kTrianglesPerSquareEdge = 3.5;
+constexpr double kTrianglesPerSquareEdge = 5.0;
 
-// An input loop segment: loop index and the index of its first polygon vertex.
+// The polyline constraint holding the pre-split pieces of one loop segment, which is named by
+// its loop and the index of its first polygon vertex.
 struct LoopSegment {
   Cdt::Constraint_id constraint;
   int loop = 0;
@@ -78,9 +77,14 @@ Status ValidateLoops(const std::vector<DomainLoop>& loops, double edge_length) {
                                   std::to_string(loop.polygon.size()) +
                                   " points, a closed loop needs at least 3");
     }
-    for (const Eigen::Vector2d& p : loop.polygon) {
+    for (size_t j = 0; j < loop.polygon.size(); ++j) {
+      const Eigen::Vector2d& p = loop.polygon[j];
       if (!p.allFinite()) {
         return Status::InvalidInput("loop " + std::to_string(i) + " has a non-finite point");
+      }
+      if (p == loop.polygon[(j + 1) % loop.polygon.size()]) {
+        return Status::InvalidInput("loop " + std::to_string(i) + " repeats point " +
+                                    std::to_string(j) + " (a loop is closed implicitly)");
       }
     }
     if (loop.is_circle && !(std::isfinite(loop.radius) && loop.radius > 0.0)) {
@@ -122,8 +126,8 @@ std::vector<LoopSegment> InsertLoopConstraints(const std::vector<DomainLoop>& lo
     for (size_t j = 0; j < polygon.size(); ++j) {
       const std::vector<Point> pieces =
           PreSplitSegment(polygon[j], polygon[(j + 1) % polygon.size()], edge_length);
-      segments.push_back({cdt->insert_constraint(pieces.begin(), pieces.end()),
-                          static_cast<int>(i), static_cast<int>(j)});
+      segments.push_back({cdt->insert_constraint(pieces.begin(), pieces.end()), static_cast<int>(i),
+                          static_cast<int>(j)});
     }
   }
   return segments;
@@ -163,14 +167,8 @@ std::vector<Point> HoleSeeds(const Cdt& cdt) {
   return seeds;
 }
 
-// Delaunay refinement to the size and shape bounds, Lloyd smoothing of the interior
-// vertices, and a second refinement that restores the bounds wherever Lloyd broke them.
 void RefineDomain(const std::vector<Point>& seeds, double edge_length, Cdt* cdt) {
   const Criteria criteria(kShapeBound, edge_length);
-  CGAL::refine_Delaunay_mesh_2(*cdt, seeds.begin(), seeds.end(), criteria, false);
-  CGAL::lloyd_optimize_mesh_2(*cdt, CGAL::parameters::max_iteration_number = kLloydIterations,
-                              CGAL::parameters::seeds_begin = seeds.begin(),
-                              CGAL::parameters::seeds_end = seeds.end());
   CGAL::refine_Delaunay_mesh_2(*cdt, seeds.begin(), seeds.end(), criteria, false);
 }
 
@@ -184,8 +182,7 @@ void ExtractDomain(const Cdt& cdt, std::unordered_map<CdtVertex, int>* vertex_in
     std::array<int, 3> triangle;
     for (int k = 0; k < 3; ++k) {
       const CdtVertex v = face->vertex(k);
-      const auto [it, inserted] =
-          vertex_index->emplace(v, static_cast<int>(out->points.size()));
+      const auto [it, inserted] = vertex_index->emplace(v, static_cast<int>(out->points.size()));
       if (inserted) out->points.emplace_back(v->point().x(), v->point().y());
       triangle[k] = it->second;
     }

@@ -1,8 +1,8 @@
 // MeshPlanarDomain: quality triangulation of a planar polygonal domain with holes, by CGAL's
-// 2D constrained Delaunay refinement (Shewchuk-style, Delaunay_mesher_2) followed by a few
-// Lloyd iterations and a final refinement pass. Every loop vertex is kept, boundary points on
-// axis-parallel segments are snapped exactly onto the segment's line, and boundary points of
-// circular loops exactly onto the circle. The built-in surfaces lift this mesh to z = f(x, y).
+// 2D constrained Delaunay refinement (Ruppert/Shewchuk, Delaunay_mesher_2). Every loop vertex
+// is kept, boundary points on axis-parallel segments are snapped exactly onto the segment's
+// line, and boundary points of circular loops exactly onto the circle. The built-in surfaces
+// (surface_generators.h) lift this mesh to z = f(x, y).
 #pragma once
 
 #include <array>

@@ -1,10 +1,14 @@
-// Built-in surfaces: each generator is a height field (planar domain + z = f(x, y)); the
-// domain is triangulated by MeshPlanarDomain and every vertex lifted to the surface.
+// Built-in surfaces: each generator is a height field (planar domain + z = f(x, y)). The
+// domain is triangulated by MeshPlanarDomain, every vertex is lifted to the surface, and the
+// lifted mesh is remeshed on the surface (edge splits, Delaunay flips, tangential smoothing)
+// so that edge length and angles hold in space and not only in the plan.
 #include "geometry/surface_generators.h"
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -48,8 +52,12 @@ DomainLoop CenteredRectangle(const GeneratorParams& params) {
 
 Status RequirePositive(double value, const std::string& key) {
   if (std::isfinite(value) && value > 0.0) return Status::Ok();
-  return Status::InvalidInput(key + " must be positive and finite, got " +
-                              std::to_string(value));
+  return Status::InvalidInput(key + " must be positive and finite, got " + std::to_string(value));
+}
+
+Status RequireRectangle(const GeneratorParams& params) {
+  PQ_RETURN_IF_ERROR(RequirePositive(params.width, "surface.width"));
+  return RequirePositive(params.depth, "surface.depth");
 }
 
 Status GreatCourt(const GeneratorParams& params, HeightField* field) {
@@ -60,8 +68,7 @@ Status GreatCourt(const GeneratorParams& params, HeightField* field) {
 }
 
 Status Dome(const GeneratorParams& params, HeightField* field) {
-  PQ_RETURN_IF_ERROR(RequirePositive(params.width, "surface.width"));
-  PQ_RETURN_IF_ERROR(RequirePositive(params.depth, "surface.depth"));
+  PQ_RETURN_IF_ERROR(RequireRectangle(params));
   PQ_RETURN_IF_ERROR(RequirePositive(params.rise, "surface.rise"));
   field->domain = {CenteredRectangle(params)};
   const double half_width = 0.5 * params.width, half_depth = 0.5 * params.depth;
@@ -74,8 +81,7 @@ Status Dome(const GeneratorParams& params, HeightField* field) {
 }
 
 Status Hypar(const GeneratorParams& params, HeightField* field) {
-  PQ_RETURN_IF_ERROR(RequirePositive(params.width, "surface.width"));
-  PQ_RETURN_IF_ERROR(RequirePositive(params.depth, "surface.depth"));
+  PQ_RETURN_IF_ERROR(RequireRectangle(params));
   PQ_RETURN_IF_ERROR(RequirePositive(params.rise, "surface.rise"));
   field->domain = {CenteredRectangle(params)};
   const double scale = params.rise / (0.25 * params.width * params.depth);
@@ -85,12 +91,12 @@ Status Hypar(const GeneratorParams& params, HeightField* field) {
 
 // Circular-arc vault over the x span: radius R = (w²/4 + rise²) / (2 rise), supports at z = 0.
 Status Barrel(const GeneratorParams& params, HeightField* field) {
-  PQ_RETURN_IF_ERROR(RequirePositive(params.width, "surface.width"));
-  PQ_RETURN_IF_ERROR(RequirePositive(params.depth, "surface.depth"));
+  PQ_RETURN_IF_ERROR(RequireRectangle(params));
   PQ_RETURN_IF_ERROR(RequirePositive(params.rise, "surface.rise"));
   if (params.rise >= 0.5 * params.width) {
-    return Status::InvalidInput("surface.rise of a barrel must be less than half of "
-                                "surface.width (the arc would not be a height field)");
+    return Status::InvalidInput(
+        "surface.rise of a barrel must be less than half of surface.width (a higher arc is "
+        "not a height field)");
   }
   field->domain = {CenteredRectangle(params)};
   const double rise = params.rise;
@@ -102,8 +108,7 @@ Status Barrel(const GeneratorParams& params, HeightField* field) {
 }
 
 Status Plane(const GeneratorParams& params, HeightField* field) {
-  PQ_RETURN_IF_ERROR(RequirePositive(params.width, "surface.width"));
-  PQ_RETURN_IF_ERROR(RequirePositive(params.depth, "surface.depth"));
+  PQ_RETURN_IF_ERROR(RequireRectangle(params));
   field->domain = {CenteredRectangle(params)};
   field->height = [](double, double) { return 0.0; };
   return Status::Ok();
@@ -120,8 +125,9 @@ Status Annulus(const GeneratorParams& params, HeightField* field) {
   PQ_RETURN_IF_ERROR(RequirePositive(params.width, "surface.width"));
   PQ_RETURN_IF_ERROR(RequirePositive(params.depth, "surface.depth"));
   if (params.depth >= params.width) {
-    return Status::InvalidInput("surface.depth (inner diameter of the annulus) must be less "
-                                "than surface.width (outer diameter)");
+    return Status::InvalidInput(
+        "surface.depth (inner diameter of the annulus) must be less than surface.width (outer "
+        "diameter)");
   }
   const Eigen::Vector2d center = Eigen::Vector2d::Zero();
   field->domain = {CircleLoop(center, 0.5 * params.width, params.edge_length),
@@ -136,9 +142,13 @@ struct Generator {
 };
 
 const std::vector<Generator>& Generators() {
-  static const std::vector<Generator> generators = {
-      {"great_court", GreatCourt}, {"dome", Dome}, {"hypar", Hypar},     {"barrel", Barrel},
-      {"disk", Disk},              {"annulus", Annulus}, {"plane", Plane}};
+  static const std::vector<Generator> generators = {{"great_court", GreatCourt},
+                                                    {"dome", Dome},
+                                                    {"hypar", Hypar},
+                                                    {"barrel", Barrel},
+                                                    {"disk", Disk},
+                                                    {"annulus", Annulus},
+                                                    {"plane", Plane}};
   return generators;
 }
 
@@ -173,11 +183,11 @@ double PlanOrientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
   return u.x() * v.y() - u.y() * v.x();
 }
 
-// Angle at `apex` of the triangle (apex, a, b) in space.
-double SpaceAngle(const TriMesh& mesh, VertexHandle apex, VertexHandle a, VertexHandle b) {
+// Cotangent of the angle at `apex` of the triangle (apex, a, b) in space.
+double SpaceCotangent(const TriMesh& mesh, VertexHandle apex, VertexHandle a, VertexHandle b) {
   const Eigen::Vector3d u = ToEigen(mesh.point(a) - mesh.point(apex));
   const Eigen::Vector3d v = ToEigen(mesh.point(b) - mesh.point(apex));
-  return std::atan2(u.cross(v).norm(), u.dot(v));
+  return u.dot(v) / u.cross(v).norm();
 }
 
 // Lifts each planar point to (x, y, height(x, y)); counter-clockwise triangles in the plane
@@ -192,38 +202,59 @@ void LiftToMesh(const PlanarTriangulation& plan, const HeightField& field, TriMe
   }
 }
 
-// Splits every interior edge longer than max_length (in space) at its plan midpoint.
-// Boundary edges keep the planar mesher's vertices, which lie exactly on the domain loops.
+// The plan position halfway along the edge p-q. On a boundary edge of a circular loop it is
+// projected onto the circle; on a straight loop segment the midpoint is already on it (and
+// exactly so on an axis-parallel one).
+Eigen::Vector2d BoundaryAwareMidpoint(const HeightField& field, const Eigen::Vector2d& p,
+                                      const Eigen::Vector2d& q, bool on_boundary) {
+  const Eigen::Vector2d midpoint = 0.5 * (p + q);
+  if (!on_boundary) return midpoint;
+  for (const DomainLoop& loop : field.domain) {
+    if (!loop.is_circle) continue;
+    const double tolerance = 1e-9 * loop.radius;
+    if (std::abs((p - loop.center).norm() - loop.radius) <= tolerance &&
+        std::abs((q - loop.center).norm() - loop.radius) <= tolerance) {
+      return loop.center + loop.radius * (midpoint - loop.center).normalized();
+    }
+  }
+  return midpoint;
+}
+
+// Splits every edge longer than max_length (in space) at its plan midpoint; new boundary
+// vertices lie on the domain loops.
 void SplitLongEdges(const HeightField& field, double max_length, TriMesh* mesh) {
   std::vector<EdgeHandle> long_edges;
   for (EdgeHandle e : mesh->edges()) {
-    if (!mesh->is_boundary(e) && mesh->calc_edge_length(e) > max_length) long_edges.push_back(e);
+    if (mesh->calc_edge_length(e) > max_length) long_edges.push_back(e);
   }
   for (EdgeHandle e : long_edges) {
     const HalfedgeHandle h = mesh->halfedge_handle(e, 0);
-    const Eigen::Vector2d midpoint = 0.5 * (PlanPosition(*mesh, mesh->from_vertex_handle(h)) +
-                                            PlanPosition(*mesh, mesh->to_vertex_handle(h)));
+    const Eigen::Vector2d midpoint =
+        BoundaryAwareMidpoint(field, PlanPosition(*mesh, mesh->from_vertex_handle(h)),
+                              PlanPosition(*mesh, mesh->to_vertex_handle(h)), mesh->is_boundary(e));
     mesh->split(e, Lift(field, midpoint));
   }
 }
 
 // Flips interior edge e if its two opposite angles in space sum to more than π (it is not
-// locally Delaunay on the surface) and both new triangles are counter-clockwise in the plan.
+// locally Delaunay on the surface: cot α + cot β < 0) and both new triangles are
+// counter-clockwise in the plan.
 bool FlipIfNotDelaunay(EdgeHandle e, TriMesh* mesh) {
-  if (mesh->is_boundary(e) || !mesh->is_flip_ok(e)) return false;
+  if (mesh->is_boundary(e)) return false;
   const HalfedgeHandle h = mesh->halfedge_handle(e, 0);
   const HalfedgeHandle twin = mesh->halfedge_handle(e, 1);
   const VertexHandle p = mesh->from_vertex_handle(h), q = mesh->to_vertex_handle(h);
   const VertexHandle a = mesh->to_vertex_handle(mesh->next_halfedge_handle(h));
   const VertexHandle b = mesh->to_vertex_handle(mesh->next_halfedge_handle(twin));
   constexpr double kTolerance = 1e-9;
-  if (SpaceAngle(*mesh, a, p, q) + SpaceAngle(*mesh, b, q, p) <= M_PI + kTolerance) {
+  if (SpaceCotangent(*mesh, a, p, q) + SpaceCotangent(*mesh, b, q, p) >= -kTolerance) {
     return false;
   }
   // The quad p, b, q, a is counter-clockwise; the diagonal a-b must stay inside it.
   const Eigen::Vector2d pp = PlanPosition(*mesh, p), pq = PlanPosition(*mesh, q);
   const Eigen::Vector2d pa = PlanPosition(*mesh, a), pb = PlanPosition(*mesh, b);
   if (PlanOrientation(pp, pb, pa) <= 0.0 || PlanOrientation(pb, pq, pa) <= 0.0) return false;
+  if (!mesh->is_flip_ok(e)) return false;
   mesh->flip(e);
   return true;
 }
@@ -263,7 +294,7 @@ void SmoothInteriorVertices(const HeightField& field, TriMesh* mesh) {
 // The planar mesh is isotropic in the plan, but a steep height field stretches it (the Great
 // Court rises with slope up to 1.4 from its north edge, which lengthens edges by up to 1.7
 // and flattens triangles). A few rounds of isotropic remeshing on the surface restore edge
-// length and shape in space; every vertex stays on z = f(x, y) and boundary vertices stay put.
+// length and shape in space. Every vertex stays on z = f(x, y); boundary vertices never move.
 void RemeshOnSurface(const HeightField& field, double edge_length, TriMesh* mesh) {
   constexpr int kRounds = 5;
   constexpr double kMaxLengthRatio = 4.0 / 3.0;  // as in Botsch & Kobbelt 2004
@@ -280,12 +311,12 @@ void RemeshOnSurface(const HeightField& field, double edge_length, TriMesh* mesh
 double GreatCourtHeight(double x, double y) {
   const double r = std::hypot(x, y);
   const double theta = std::atan2(y, x);
-  const double psi = (1.0 - x / GC::b) * (1.0 + x / GC::b) * (1.0 - y / GC::c) *
-                     (1.0 + y / GC::d);
+  const double psi = (1.0 - x / GC::b) * (1.0 + x / GC::b) * (1.0 - y / GC::c) * (1.0 + y / GC::d);
   const double ax = GC::a * x / r, ay = GC::a * y / r;
-  const double eta = psi / ((1.0 - ax / GC::b) * (1.0 + ax / GC::b) * (1.0 - ay / GC::c) *
-                            (1.0 + ay / GC::d));
-  const double alpha = (r / GC::a - 1.0) * psi;
+  const double eta =
+      psi / ((1.0 - ax / GC::b) * (1.0 + ax / GC::b) * (1.0 - ay / GC::c) * (1.0 + ay / GC::d));
+  const double ring_offset = r / GC::a - 1.0;
+  const double alpha = ring_offset * psi;
   const double beta = GreatCourtBeta(x, y, r);
 
   const double cos_2theta = std::cos(2.0 * theta), sin_theta = std::sin(theta);
@@ -293,19 +324,17 @@ double GreatCourtHeight(double x, double y) {
   const double north = 0.5 * (0.5 * (1.0 - cos_2theta) + sin_theta);
   const double south = 0.5 * (0.5 * (1.0 - cos_2theta) - sin_theta);
   const double lambda = kGreatCourtLambda, mu = kGreatCourtMu;
-  const double ring_offset = r / GC::a - 1.0;
 
   const double z1 = (GC::h_cen - GC::h_edge) * eta + GC::h_edge;
-  const double z2 =
-      alpha * ((1.0 - lambda) * ((35.0 + 10.0 * psi) * east + 24.0 * north +
-                                 (7.5 + 12.0 * psi) * 2.0 * south - 1.6) -
-               10.0 * east + 10.0 * north * north * (1.0 - 3.0 * alpha) +
-               2.5 * south * south * ring_offset * ring_offset);
+  const double z2 = alpha * ((1.0 - lambda) * ((35.0 + 10.0 * psi) * east + 24.0 * north +
+                                               (7.5 + 12.0 * psi) * 2.0 * south - 1.6) -
+                             10.0 * east + 10.0 * north * north * (1.0 - 3.0 * alpha) +
+                             2.5 * south * south * ring_offset * ring_offset);
   const double corner_decay =
       (std::exp(-mu * (1.0 - x / GC::b)) + std::exp(-mu * (1.0 + x / GC::b))) *
       (std::exp(-mu * (1.0 - y / GC::c)) + std::exp(-mu * (1.0 + y / GC::d)));
-  const double z3 = beta * (lambda * (3.5 * east + 3.0 * (1.0 - east) + 0.3 * sin_theta) +
-                            1.05 * corner_decay);
+  const double z3 =
+      beta * (lambda * (3.5 * east + 3.0 * (1.0 - east) + 0.3 * sin_theta) + 1.05 * corner_decay);
   return z1 + z2 + z3;
 }
 

@@ -39,7 +39,7 @@ struct BoundaryRule {
 struct SurfaceOptions {
   std::string file;                   // reference mesh (OBJ/PLY/OFF/STL, metres); relative to the config file
   std::string generator = "great_court";  // built-in surface when no file is given
-  double edge_length = 1.0;           // generator: target triangle edge length, m
+  double edge_length = 1.5;           // generator: target triangle edge length, m
   double width = 30.0;                // generator: x extent, m (disk/annulus: outer diameter)
   double depth = 30.0;                // generator: y extent, m (annulus: inner diameter)
   double rise = 5.0;                  // generator: crown height above the supports, m

@@ -22,7 +22,7 @@ const StageEntry kStages[] = {
     {Stage::kSurface, "surface", &RunSurfaceStage},
     {Stage::kMembrane, "membrane", &RunMembraneStage},
     {Stage::kGuidance, "guidance", &RunGuidanceStage},
-    {Stage::kLevelset, "levelset", nullptr},
+    {Stage::kLevelset, "levelset", &RunLevelsetStage},
     {Stage::kExtract, "extract", nullptr},
     {Stage::kPlanarize, "planarize", nullptr},
     {Stage::kAnalyze, "analyze", nullptr},

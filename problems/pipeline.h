@@ -15,6 +15,7 @@
 #include "problems/boundary_conditions.h"
 #include "problems/config.h"
 #include "problems/guidance.h"
+#include "problems/levelset.h"
 #include "problems/output_files.h"
 
 namespace pqlayout {
@@ -32,6 +33,7 @@ struct PipelineState {
   VertexConditions supports;              // stage surface: per boundary vertex
   // stage membrane: vertex field "v_z" on *surface
   GuidanceField guidance;                 // stage guidance
+  LevelSetSolution levelsets;             // stage levelset
 };
 
 // One stage: reads and extends state, writes files through out, fills metrics (JSON object;

@@ -16,4 +16,7 @@ Status RunMembraneStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
 // writes fields/vertices.csv, fields/faces.csv, fields.vtk.
 Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
 
+// levelset: φ and ψ (Ceres); vertex fields "phi", "psi".
+Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
+
 }  // namespace pqlayout

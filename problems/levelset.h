@@ -1,0 +1,50 @@
+// Stage `levelset` (paper §3.1 steps 1–2; Zadravec, Schiftner & Wallner 2010; SPEC §4): two
+// scalar functions per vertex of the reference surface whose level lines φ = i·h and
+// ψ = j·h become the polylines of the quad mesh.
+//   1. φ: level lines aligned with the guidance field (weighted), evenly spaced, smooth.
+//   2. ψ: level lines conjugate to φ's (so quads are nearly planar), evenly spaced, smooth,
+//      crossing φ's at ≥ levelset.min_angle with a consistent orientation (no fold-overs).
+// Every term is a Ceres autodiff residual block (problems/residuals/*.h); weights are
+// levelset.weights.<term>. Initial guess: a Poisson solve (CHOLMOD) for φ towards the
+// consistently oriented field n × d / h, then one for ψ towards the conjugate direction.
+#pragma once
+
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/surface_model.h"
+#include "problems/config.h"
+#include "problems/guidance.h"
+
+namespace pqlayout {
+
+// SPEC §4 metrics (report keys in parentheses).
+struct LevelSetMetrics {
+  double alignment_rms_deg = 0.0;         // weighted RMS angle of φ's level lines to d (alignment_rms_deg)
+  double alignment_rms_deg_strong = 0.0;  // the same over faces with weight > 0.5
+  double spacing_cv_phi = 0.0;            // coefficient of variation of 1/|∇φ| (spacing_cv_phi)
+  double spacing_cv_psi = 0.0;            // (spacing_cv_psi)
+  double spacing_cv_phi_strong = 0.0;     // over faces with weight > 0.5
+  double spacing_cv_psi_strong = 0.0;
+  double conjugacy_rms = 0.0;             // RMS normalised conjugacy t̂1ᵀ S̃ t̂2 / κ̃ (conjugacy_rms)
+  double min_crossing_angle_deg = 0.0;    // (min_crossing_angle_deg)
+  int foldovers = 0;                      // faces with n·(∇φ × ∇ψ) ≤ 0 (foldovers)
+  nlohmann::json ToJson() const;
+};
+
+struct LevelSetSolution {
+  std::vector<double> phi, psi;  // per vertex; level lines at multiples of h
+  LevelSetMetrics initial;       // of the Poisson initial guess
+  LevelSetMetrics metrics;       // of the result
+  nlohmann::json solver;         // Ceres summaries of the two solves
+};
+
+Status SolveLevelSets(const SurfaceModel& surface, const GuidanceField& guidance, const LevelsetOptions& options,
+                      double spacing, LevelSetSolution* solution);
+
+// The metrics of any pair (φ, ψ), e.g. for tests or another layout.
+LevelSetMetrics MeasureLevelSets(const SurfaceModel& surface, const GuidanceField& guidance,
+                                 const std::vector<double>& phi, const std::vector<double>& psi, double spacing);
+
+}  // namespace pqlayout

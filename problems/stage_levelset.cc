@@ -1,0 +1,466 @@
+// Stage `levelset`: see problems/levelset.h.
+#include <ceres/ceres.h>
+#include <glog/logging.h>
+
+#include <cmath>
+#include <numeric>
+#include <queue>
+
+#include "geometry/differential_operators.h"
+#include "geometry/principal_directions.h"
+#include "problems/levelset.h"
+#include "problems/residuals/alignment_residual.h"
+#include "problems/residuals/conjugacy_residual.h"
+#include "problems/residuals/smoothness_residual.h"
+#include "problems/residuals/spacing_residual.h"
+#include "problems/residuals/transversality_residual.h"
+#include "problems/stages.h"
+#include "solver/cholmod_solver.h"
+
+namespace pqlayout {
+namespace {
+
+constexpr double kDegrees = 180.0 / M_PI;
+
+// Per-face data shared by every term, computed once.
+struct LevelSetGeometry {
+  std::vector<Eigen::Matrix3d> G;      // P1 basis gradients, columns in face_vertices order
+  std::vector<Eigen::Matrix3d> S;      // shape operators
+  std::vector<Eigen::Vector3d> centroid;
+  double flat_curvature = 0.0;         // μ: below this curvature, conjugacy becomes orthogonality
+};
+
+LevelSetGeometry Precompute(const SurfaceModel& surface) {
+  LevelSetGeometry geo;
+  geo.S = FaceShapeOperators(surface);
+  geo.G.resize(surface.num_faces());
+  geo.centroid.resize(surface.num_faces());
+  double curvature_integral = 0.0;
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const auto g = FaceBasisGradients(surface, f);
+    geo.G[f] << g[0], g[1], g[2];
+    const auto ids = surface.face_vertices(f);
+    geo.centroid[f] = (surface.position(ids[0]) + surface.position(ids[1]) + surface.position(ids[2])) / 3.0;
+    curvature_integral += surface.face_area(f) * ConjugacyResidual::CurvatureSum(geo.S[f], surface.face_normal(f));
+  }
+  // μ = 10 % of the mean |κ1| + |κ2|: flat parts of a curved roof fall back to orthogonal
+  // grid lines, the curved parts are conjugate.
+  geo.flat_curvature = std::max(1e-12, 0.1 * curvature_integral / surface.total_area());
+  return geo;
+}
+
+Eigen::Vector3d Gradient(const LevelSetGeometry& geo, const SurfaceModel& s, int f, const std::vector<double>& u) {
+  const auto ids = s.face_vertices(f);
+  return geo.G[f] * Eigen::Vector3d(u[ids[0]], u[ids[1]], u[ids[2]]);
+}
+
+// An interior edge (i, j) between face f (third vertex k) and face g (third vertex l).
+struct InteriorEdge {
+  int i, j, k, l;
+  Eigen::Matrix3d Gf, Gg;  // basis gradients in the order (i, j, k) and (i, j, l)
+  double area, distance;
+};
+
+Eigen::Matrix3d OrderedBasis(const LevelSetGeometry& geo, const SurfaceModel& s, int f, const std::array<int, 3>& order) {
+  const auto ids = s.face_vertices(f);
+  Eigen::Matrix3d ordered;
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k)
+      if (ids[k] == order[c]) ordered.col(c) = geo.G[f].col(k);
+  return ordered;
+}
+
+std::vector<InteriorEdge> InteriorEdges(const SurfaceModel& s, const LevelSetGeometry& geo) {
+  const TriMesh& mesh = s.mesh();
+  std::vector<InteriorEdge> edges;
+  for (const auto e : mesh.edges()) {
+    if (mesh.is_boundary(e)) continue;
+    const auto h = mesh.halfedge_handle(e, 0), o = mesh.opposite_halfedge_handle(h);
+    const int f = mesh.face_handle(h).idx(), g = mesh.face_handle(o).idx();
+    InteriorEdge edge;
+    edge.i = mesh.from_vertex_handle(h).idx();
+    edge.j = mesh.to_vertex_handle(h).idx();
+    edge.k = mesh.to_vertex_handle(mesh.next_halfedge_handle(h)).idx();
+    edge.l = mesh.to_vertex_handle(mesh.next_halfedge_handle(o)).idx();
+    edge.Gf = OrderedBasis(geo, s, f, {edge.i, edge.j, edge.k});
+    edge.Gg = OrderedBasis(geo, s, g, {edge.i, edge.j, edge.l});
+    edge.area = (s.face_area(f) + s.face_area(g)) / 3.0;
+    edge.distance = (geo.centroid[f] - geo.centroid[g]).norm();
+    edges.push_back(edge);
+  }
+  return edges;
+}
+
+// ---- Initial guess -------------------------------------------------------------------
+
+// n × d per face, with signs made consistent across neighbouring faces, strongest guidance
+// first (a line field has no global orientation near its singularities; those regions are
+// reached last and matter least).
+std::vector<Eigen::Vector3d> OrientedCrossField(const SurfaceModel& s, const GuidanceField& g) {
+  std::vector<Eigen::Vector3d> u(s.num_faces());
+  for (int f = 0; f < s.num_faces(); ++f) u[f] = s.face_normal(f).cross(g.direction[f]);
+  std::vector<char> done(s.num_faces(), 0);
+  std::vector<int> by_weight(s.num_faces());
+  std::iota(by_weight.begin(), by_weight.end(), 0);
+  std::stable_sort(by_weight.begin(), by_weight.end(), [&](int a, int b) { return g.weight[a] > g.weight[b]; });
+  using Item = std::pair<double, int>;
+  for (const int seed : by_weight) {
+    if (done[seed]) continue;
+    std::priority_queue<Item> queue;
+    queue.push({g.weight[seed], seed});
+    done[seed] = 1;
+    while (!queue.empty()) {
+      const int f = queue.top().second;
+      queue.pop();
+      for (const auto n : s.mesh().ff_range(FaceHandle(f))) {
+        if (done[n.idx()]) continue;
+        done[n.idx()] = 1;
+        if (u[n.idx()].dot(u[f]) < 0.0) u[n.idx()] = -u[n.idx()];
+        queue.push({g.weight[n.idx()], n.idx()});
+      }
+    }
+  }
+  return u;
+}
+
+// argmin_u Σ_f ω_f A_f |∇u_f − target_f|², one vertex per connected component held at 0.
+Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target,
+                  const std::vector<double>& omega, std::vector<double>* u) {
+  std::vector<int> component;
+  const int components = ConnectedComponents(s, &component);
+  std::vector<int> unknown(s.num_vertices(), -1);
+  std::vector<char> anchored(components, 0);
+  int n = 0;
+  for (int v = 0; v < s.num_vertices(); ++v) {
+    if (!anchored[component[v]]) anchored[component[v]] = 1;
+    else unknown[v] = n++;
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto ids = s.face_vertices(f);
+    const double a = omega[f] * s.face_area(f);
+    for (int p = 0; p < 3; ++p) {
+      if (unknown[ids[p]] < 0) continue;
+      rhs[unknown[ids[p]]] += a * geo.G[f].col(p).dot(target[f]);
+      for (int q = 0; q < 3; ++q)
+        if (unknown[ids[q]] >= 0)
+          triplets.emplace_back(unknown[ids[p]], unknown[ids[q]], a * geo.G[f].col(p).dot(geo.G[f].col(q)));
+    }
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(triplets.begin(), triplets.end());
+  CholmodSolver solver;
+  PQ_RETURN_IF_ERROR(solver.Factorize(A).WithContext("levelset initial guess"));
+  Eigen::VectorXd x;
+  PQ_RETURN_IF_ERROR(solver.Solve(rhs, &x).WithContext("levelset initial guess"));
+  u->assign(s.num_vertices(), 0.0);
+  for (int v = 0; v < s.num_vertices(); ++v)
+    if (unknown[v] >= 0) (*u)[v] = x[unknown[v]];
+  return Status::Ok();
+}
+
+// Quadratic forms (#V by #V) of the φ energies without the spacing term: alignment
+// Σ w_f A_f h² ⟨∇φ, d⟩² and smoothness Σ_e A_e h⁴ |∇φ_f − ∇φ_g|² / ℓ_e², and the Dirichlet
+// energy Σ_f A_f h² |∇φ|².
+void AddFaceForm(const Eigen::Vector3d& a, const std::array<int, 3>& ids, double scale,
+                 std::vector<Eigen::Triplet<double>>* t) {
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) t->emplace_back(ids[p], ids[q], scale * a[p] * a[q]);
+}
+
+Eigen::SparseMatrix<double> AlignmentSmoothnessForm(const SurfaceModel& s, const LevelSetGeometry& geo,
+                                                    const GuidanceField& g, const std::vector<InteriorEdge>& edges,
+                                                    double h, const LevelsetWeights& w) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int f = 0; f < s.num_faces(); ++f)
+    AddFaceForm(geo.G[f].transpose() * g.direction[f], s.face_vertices(f),
+                w.alignment * g.weight[f] * s.face_area(f) * h * h, &t);
+  for (const auto& e : edges) {
+    const std::array<int, 4> ids{e.i, e.j, e.k, e.l};
+    Eigen::Matrix<double, 3, 4> D;
+    D << e.Gf.col(0) - e.Gg.col(0), e.Gf.col(1) - e.Gg.col(1), e.Gf.col(2), -e.Gg.col(2);
+    const Eigen::Matrix4d block = D.transpose() * D * (w.smoothness * e.area * std::pow(h, 4) / (e.distance * e.distance));
+    for (int p = 0; p < 4; ++p)
+      for (int q = 0; q < 4; ++q) t.emplace_back(ids[p], ids[q], block(p, q));
+  }
+  Eigen::SparseMatrix<double> N(s.num_vertices(), s.num_vertices());
+  N.setFromTriplets(t.begin(), t.end());
+  return N;
+}
+
+// The best compromise between alignment and smoothness that a single-valued φ can make:
+// the smallest generalised eigenvector of (alignment + smoothness, Dirichlet energy), found
+// by inverse iteration from `phi` (Knöppel et al.'s globally optimal direction fields use the
+// same idea). No orientation of the guidance line field is needed. Scaled to mean h|∇φ| = 1.
+Status SmallestEigenvector(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g,
+                           const std::vector<InteriorEdge>& edges, double h, const LevelsetWeights& w,
+                           std::vector<double>* phi) {
+  const Eigen::SparseMatrix<double> N = AlignmentSmoothnessForm(s, geo, g, edges, h, w);
+  const Eigen::SparseMatrix<double> K = CotanStiffness(s) * (h * h);
+  Eigen::VectorXd mass(s.num_vertices());
+  for (int v = 0; v < s.num_vertices(); ++v) mass[v] = s.vertex_area(v);
+  // B = N + τ K + ε M is positive definite; it has the eigenvectors of the pencil (N, K).
+  const double tau = 1e-3 * N.diagonal().sum() / K.diagonal().sum();
+  const double epsilon = 1e-9 * K.diagonal().sum() / mass.sum();
+  Eigen::SparseMatrix<double> B = N + tau * K;
+  for (int v = 0; v < s.num_vertices(); ++v) B.coeffRef(v, v) += epsilon * mass[v];
+  CholmodSolver solver;
+  PQ_RETURN_IF_ERROR(solver.Factorize(B).WithContext("levelset initial guess"));
+  Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(phi->data(), s.num_vertices());
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    Eigen::VectorXd next;
+    PQ_RETURN_IF_ERROR(solver.Solve(Eigen::VectorXd(K * x), &next));
+    next.array() -= next.dot(mass) / mass.sum();  // constants are not a layout
+    const double norm = std::sqrt(next.dot(K * next));
+    if (!(norm > 0.0)) break;
+    x = next / norm;
+  }
+  double gradient_sum = 0.0;
+  std::vector<double> values(x.data(), x.data() + x.size());
+  for (int f = 0; f < s.num_faces(); ++f) gradient_sum += s.face_area(f) * Gradient(geo, s, f, values).norm();
+  const double scale = s.total_area() / (h * gradient_sum);
+  for (int v = 0; v < s.num_vertices(); ++v) (*phi)[v] = scale * x[v];
+  return Status::Ok();
+}
+
+// The gradient ψ should have: across the direction conjugate to φ's level lines
+// (c = n × S̃ t̂1, falling back to orthogonal where c is too close to t̂1), length 1/h,
+// oriented so that n · (∇φ × ∇ψ) > 0.
+std::vector<Eigen::Vector3d> ConjugateTargets(const SurfaceModel& s, const LevelSetGeometry& geo,
+                                              const std::vector<double>& phi, double h, double min_angle) {
+  std::vector<Eigen::Vector3d> target(s.num_faces());
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const Eigen::Vector3d& n = s.face_normal(f);
+    const Eigen::Vector3d gphi = Gradient(geo, s, f, phi);
+    const Eigen::Vector3d t1 = n.cross(gphi).normalized();
+    const Eigen::Matrix3d S = ConjugacyResidual::Regularised(geo.S[f], n, geo.flat_curvature);
+    Eigen::Vector3d c = n.cross(S * t1).normalized();
+    if (!c.allFinite() || c.cross(t1).norm() < std::sin(min_angle)) c = n.cross(t1);
+    Eigen::Vector3d across = n.cross(c) / h;
+    if (n.dot(gphi.cross(across)) < 0.0) across = -across;
+    target[f] = across;
+  }
+  return target;
+}
+
+// ---- Ceres ---------------------------------------------------------------------------
+
+class ProgressLog : public ceres::IterationCallback {
+ public:
+  explicit ProgressLog(std::string name) : name_(std::move(name)) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
+    VLOG(1) << name_ << " iteration " << it.iteration << ": cost " << it.cost;
+    if (it.iteration > 0 && it.iteration % 25 == 0)
+      LOG(INFO) << "levelset: " << name_ << " iteration " << it.iteration << ", cost " << it.cost;
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  std::string name_;
+};
+
+nlohmann::json SummaryJson(const ceres::Solver::Summary& s) {
+  return {{"iterations", s.iterations.size() > 0 ? s.iterations.size() - 1 : 0},
+          {"initial_cost", s.initial_cost},
+          {"final_cost", s.final_cost},
+          {"termination", ceres::TerminationTypeToString(s.termination_type)},
+          {"seconds", s.total_time_in_seconds},
+          {"residual_blocks", s.num_residual_blocks},
+          {"message", s.message}};
+}
+
+Status Solve(const std::string& name, int max_iterations, ceres::Problem* problem, nlohmann::json* summary) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+  options.num_threads = 2;
+  options.max_num_iterations = max_iterations;
+  options.function_tolerance = 1e-9;
+  options.logging_type = ceres::SILENT;
+  ProgressLog progress(name);
+  options.callbacks.push_back(&progress);
+  ceres::Solver::Summary result;
+  ceres::Solve(options, problem, &result);
+  *summary = SummaryJson(result);
+  if (!result.IsSolutionUsable()) return Status::Internal("levelset: Ceres failed on " + name + ": " + result.message);
+  LOG(INFO) << "levelset: " << name << ": " << result.iterations.size() - 1 << " iterations, cost "
+            << result.initial_cost << " → " << result.final_cost << " ("
+            << ceres::TerminationTypeToString(result.termination_type) << ", " << result.total_time_in_seconds << " s)";
+  return Status::Ok();
+}
+
+ceres::LossFunction* Weight(double w) { return new ceres::ScaledLoss(nullptr, w, ceres::TAKE_OWNERSHIP); }
+
+void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, std::vector<double>* u,
+                   ceres::Problem* problem) {
+  if (weight <= 0.0) return;
+  for (const auto& e : edges)
+    problem->AddResidualBlock(SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h), Weight(weight),
+                              &(*u)[e.i], &(*u)[e.j], &(*u)[e.k], &(*u)[e.l]);
+}
+
+void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, std::vector<double>* u,
+                ceres::Problem* problem) {
+  if (weight <= 0.0) return;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto ids = s.face_vertices(f);
+    problem->AddResidualBlock(SpacingResidual::Create(geo.G[f], s.face_area(f), h), Weight(weight), &(*u)[ids[0]],
+                              &(*u)[ids[1]], &(*u)[ids[2]]);
+  }
+}
+
+}  // namespace
+
+nlohmann::json LevelSetMetrics::ToJson() const {
+  return {{"alignment_rms_deg", alignment_rms_deg},
+          {"alignment_rms_deg_weight_above_half", alignment_rms_deg_strong},
+          {"spacing_cv_phi", spacing_cv_phi},
+          {"spacing_cv_psi", spacing_cv_psi},
+          {"spacing_cv_phi_weight_above_half", spacing_cv_phi_strong},
+          {"spacing_cv_psi_weight_above_half", spacing_cv_psi_strong},
+          {"conjugacy_rms", conjugacy_rms},
+          {"min_crossing_angle_deg", min_crossing_angle_deg},
+          {"foldovers", foldovers}};
+}
+
+namespace {
+
+// Area-weighted coefficient of variation of the local spacing 1/|∇u| over faces with mask.
+double SpacingCv(const SurfaceModel& s, const std::vector<Eigen::Vector3d>& gradient, const std::vector<char>& mask) {
+  double area = 0.0, sum = 0.0, sum_sq = 0.0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    if (!mask[f] || gradient[f].norm() <= 0.0) continue;
+    const double spacing = 1.0 / gradient[f].norm(), a = s.face_area(f);
+    area += a;
+    sum += a * spacing;
+    sum_sq += a * spacing * spacing;
+  }
+  if (area <= 0.0) return 0.0;
+  const double mean = sum / area;
+  return std::sqrt(std::max(0.0, sum_sq / area - mean * mean)) / mean;
+}
+
+LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g,
+                        const std::vector<double>& phi, const std::vector<double>& psi) {
+  LevelSetMetrics m;
+  std::vector<Eigen::Vector3d> gphi(s.num_faces()), gpsi(s.num_faces());
+  std::vector<char> all(s.num_faces(), 1), strong(s.num_faces(), 0);
+  double align = 0.0, align_w = 0.0, align_s = 0.0, align_sw = 0.0, conj = 0.0;
+  m.min_crossing_angle_deg = 90.0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const Eigen::Vector3d& n = s.face_normal(f);
+    gphi[f] = Gradient(geo, s, f, phi);
+    gpsi[f] = Gradient(geo, s, f, psi);
+    strong[f] = g.weight[f] > 0.5;
+    const double sine = std::min(1.0, std::abs(gphi[f].normalized().dot(g.direction[f])));
+    const double angle = std::asin(sine) * kDegrees, wa = g.weight[f] * s.face_area(f);
+    align += wa * angle * angle;
+    align_w += wa;
+    if (strong[f]) align_s += wa * angle * angle, align_sw += wa;
+    const Eigen::Vector3d t1 = n.cross(gphi[f]).normalized(), t2 = n.cross(gpsi[f]).normalized();
+    const Eigen::Matrix3d S = ConjugacyResidual::Regularised(geo.S[f], n, geo.flat_curvature);
+    const double c = t1.dot(S * t2) / (ConjugacyResidual::CurvatureSum(geo.S[f], n) + geo.flat_curvature);
+    if (std::isfinite(c)) conj += s.face_area(f) * c * c;
+    const double crossing = std::acos(std::min(1.0, std::abs(t1.dot(t2)))) * kDegrees;
+    if (std::isfinite(crossing)) m.min_crossing_angle_deg = std::min(m.min_crossing_angle_deg, crossing);
+    if (!(n.dot(gphi[f].cross(gpsi[f])) > 0.0)) ++m.foldovers;
+  }
+  m.alignment_rms_deg = align_w > 0 ? std::sqrt(align / align_w) : 0.0;
+  m.alignment_rms_deg_strong = align_sw > 0 ? std::sqrt(align_s / align_sw) : 0.0;
+  m.spacing_cv_phi = SpacingCv(s, gphi, all);
+  m.spacing_cv_psi = SpacingCv(s, gpsi, all);
+  m.spacing_cv_phi_strong = SpacingCv(s, gphi, strong);
+  m.spacing_cv_psi_strong = SpacingCv(s, gpsi, strong);
+  m.conjugacy_rms = std::sqrt(conj / s.total_area());
+  return m;
+}
+
+}  // namespace
+
+LevelSetMetrics MeasureLevelSets(const SurfaceModel& surface, const GuidanceField& guidance,
+                                 const std::vector<double>& phi, const std::vector<double>& psi, double spacing) {
+  return Measure(surface, Precompute(surface), guidance, phi, psi);
+}
+
+Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
+                      LevelSetSolution* solution) {
+  const LevelSetGeometry geo = Precompute(s);
+  const std::vector<InteriorEdge> edges = InteriorEdges(s, geo);
+  const auto& w = options.weights;
+  const double min_angle = options.min_angle / kDegrees;
+
+  // Initial guess: φ from the oriented cross field (weak pull where the guidance is weak),
+  // then ψ from the conjugate direction of φ's level lines.
+  std::vector<Eigen::Vector3d> target = OrientedCrossField(s, g);
+  for (auto& t : target) t /= h;
+  std::vector<double> omega(s.num_faces());
+  for (int f = 0; f < s.num_faces(); ++f) omega[f] = std::max(g.weight[f], 0.05);
+  PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, omega, &solution->phi));
+  PQ_RETURN_IF_ERROR(SmallestEigenvector(s, geo, g, edges, h, w, &solution->phi));
+  PQ_RETURN_IF_ERROR(PoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
+                                std::vector<double>(s.num_faces(), 1.0), &solution->psi));
+  solution->initial = Measure(s, geo, g, solution->phi, solution->psi);
+
+  // 1. φ: alignment + spacing + smoothness.
+  std::vector<double>& phi = solution->phi;
+  ceres::Problem phi_problem;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto ids = s.face_vertices(f);
+    if (w.alignment > 0.0 && g.weight[f] > 0.0)
+      phi_problem.AddResidualBlock(AlignmentResidual::Create(geo.G[f], g.direction[f], g.weight[f], s.face_area(f), h),
+                                   Weight(w.alignment), &phi[ids[0]], &phi[ids[1]], &phi[ids[2]]);
+  }
+  AddSpacing(s, geo, h, w.spacing, &phi, &phi_problem);
+  AddSmoothness(edges, h, w.smoothness, &phi, &phi_problem);
+  if (phi_problem.NumResidualBlocks() > 0)
+    PQ_RETURN_IF_ERROR(Solve("phi", options.max_iterations, &phi_problem, &solution->solver["phi"]));
+
+  // 2. ψ with φ fixed: conjugacy + transversality + spacing + smoothness.
+  std::vector<double>& psi = solution->psi;
+  ceres::Problem psi_problem;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto ids = s.face_vertices(f);
+    double* blocks[6] = {&phi[ids[0]], &phi[ids[1]], &phi[ids[2]], &psi[ids[0]], &psi[ids[1]], &psi[ids[2]]};
+    const Eigen::Vector3d& n = s.face_normal(f);
+    if (w.conjugacy > 0.0)
+      psi_problem.AddResidualBlock(ConjugacyResidual::Create(geo.G[f], n, geo.S[f], geo.flat_curvature, s.face_area(f)),
+                                   Weight(w.conjugacy), std::vector<double*>(blocks, blocks + 6));
+    if (w.transversality > 0.0)
+      psi_problem.AddResidualBlock(TransversalityResidual::Create(geo.G[f], n, min_angle, s.face_area(f)),
+                                   Weight(w.transversality), std::vector<double*>(blocks, blocks + 6));
+  }
+  AddSpacing(s, geo, h, w.spacing, &psi, &psi_problem);
+  AddSmoothness(edges, h, w.smoothness, &psi, &psi_problem);
+  for (double& value : phi)
+    if (psi_problem.HasParameterBlock(&value)) psi_problem.SetParameterBlockConstant(&value);
+  if (psi_problem.NumResidualBlocks() > 0)
+    PQ_RETURN_IF_ERROR(Solve("psi", options.max_iterations, &psi_problem, &solution->solver["psi"]));
+
+  solution->metrics = Measure(s, geo, g, phi, psi);
+  return Status::Ok();
+}
+
+Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
+  SurfaceModel& surface = *state->surface;
+  LevelSetSolution& solution = state->levelsets;
+  PQ_RETURN_IF_ERROR(SolveLevelSets(surface, state->guidance, state->config.levelset, state->config.layout.spacing,
+                                    &solution));
+  auto phi = surface.VertexField<double>("phi");
+  auto psi = surface.VertexField<double>("psi");
+  for (int v = 0; v < surface.num_vertices(); ++v) {
+    phi[VertexHandle(v)] = solution.phi[v];
+    psi[VertexHandle(v)] = solution.psi[v];
+  }
+  *metrics = solution.metrics.ToJson();
+  (*metrics)["initial_guess"] = solution.initial.ToJson();
+  (*metrics)["ceres"] = solution.solver;
+  const auto& m = solution.metrics;
+  LOG(INFO) << "levelset: alignment " << m.alignment_rms_deg << "° RMS (" << m.alignment_rms_deg_strong
+            << "° where weight > 0.5), spacing CV φ " << m.spacing_cv_phi << " ψ " << m.spacing_cv_psi
+            << ", conjugacy " << m.conjugacy_rms << ", min crossing " << m.min_crossing_angle_deg << "°, "
+            << m.foldovers << " fold-overs";
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

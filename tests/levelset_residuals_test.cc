@@ -1,0 +1,171 @@
+// Every level-set residual functor: autodiff Jacobians against finite differences
+// (ceres::GradientChecker) at seeded random points, plus known zeros and invariances.
+#include <gtest/gtest.h>
+#include <ceres/gradient_checker.h>
+
+#include <cmath>
+#include <random>
+
+#include "geometry/differential_operators.h"
+#include "problems/residuals/alignment_residual.h"
+#include "problems/residuals/conjugacy_residual.h"
+#include "problems/residuals/smoothness_residual.h"
+#include "problems/residuals/spacing_residual.h"
+#include "problems/residuals/transversality_residual.h"
+#include "tests/test_meshes.h"
+
+namespace pqlayout {
+namespace {
+
+std::mt19937 rng(20261122);
+double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+
+// A random, reasonably shaped triangle in 3D and its P1 basis gradients.
+struct Face {
+  Eigen::Matrix3d G;
+  Eigen::Vector3d n;
+  double area;
+};
+Face RandomFace() {
+  PolygonSoup soup;
+  soup.points = {{Uniform(-1, 0), Uniform(-1, 0), Uniform(-0.3, 0.3)},
+                 {Uniform(1, 2), Uniform(-0.5, 0.5), Uniform(-0.3, 0.3)},
+                 {Uniform(-0.5, 0.5), Uniform(1, 2), Uniform(-0.3, 0.3)}};
+  soup.faces = {{0, 1, 2}};
+  const SurfaceModel s(testing::ToMesh(soup));
+  const auto g = FaceBasisGradients(s, 0);
+  Face f;
+  f.G << g[0], g[1], g[2];
+  f.n = s.face_normal(0);
+  f.area = s.face_area(0);
+  return f;
+}
+Eigen::Vector3d RandomTangent(const Eigen::Vector3d& n) {
+  const Eigen::Vector3d v(Uniform(-1, 1), Uniform(-1, 1), Uniform(-1, 1));
+  return (v - n * n.dot(v)).normalized();
+}
+Eigen::Matrix3d RandomShapeOperator(const Eigen::Vector3d& n) {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Random();
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
+  return P * (A + A.transpose()) * P * 0.1;
+}
+
+// Probes a cost function at the given parameter values.
+void ExpectJacobiansMatchFiniteDifferences(const std::string& name, const ceres::CostFunction* cost,
+                                           std::vector<double> values) {
+  SCOPED_TRACE(name);
+  std::vector<const double*> blocks;
+  for (const double& v : values) blocks.push_back(&v);
+  ceres::NumericDiffOptions options;
+  // Ridders' extrapolation starts from 1 % of |x| by default, too coarse where these
+  // normalised terms curve sharply (small |∇φ|); start from 0.01 % instead.
+  options.ridders_relative_initial_step_size = 1e-4;
+  ceres::GradientChecker checker(cost, static_cast<const std::vector<const ceres::Manifold*>*>(nullptr), options);
+  ceres::GradientChecker::ProbeResults results;
+  EXPECT_TRUE(checker.Probe(blocks.data(), 1e-7, &results)) << results.error_log;
+  delete cost;
+}
+
+std::vector<double> RandomValues(int n) {
+  std::vector<double> v(n);
+  for (double& x : v) x = Uniform(-2, 2);
+  return v;
+}
+
+TEST(LevelsetResiduals, GradientCheckAtRandomPoints) {
+  for (int trial = 0; trial < 25; ++trial) {
+    const Face f = RandomFace(), g = RandomFace();
+    const double h = Uniform(0.5, 3.0);
+    ExpectJacobiansMatchFiniteDifferences(
+        "AlignmentResidual", AlignmentResidual::Create(f.G, RandomTangent(f.n), Uniform(0, 1), f.area, h), RandomValues(3));
+    ExpectJacobiansMatchFiniteDifferences("SpacingResidual", SpacingResidual::Create(f.G, f.area, h), RandomValues(3));
+    ExpectJacobiansMatchFiniteDifferences("SmoothnessResidual", SmoothnessResidual::Create(f.G, g.G, (f.area + g.area) / 3, Uniform(0.3, 1.0), h),
+                                          RandomValues(4));
+    ExpectJacobiansMatchFiniteDifferences(
+        "ConjugacyResidual", ConjugacyResidual::Create(f.G, f.n, RandomShapeOperator(f.n), 0.01, f.area), RandomValues(6));
+    // Transversality: probe only where the hinge is smooth (|s − sin θ_min| not tiny).
+    std::vector<double> values;
+    double sine = 0.0;
+    do {
+      values = RandomValues(6);
+      const Eigen::Vector3d gphi = f.G * Eigen::Vector3d(values[0], values[1], values[2]);
+      const Eigen::Vector3d gpsi = f.G * Eigen::Vector3d(values[3], values[4], values[5]);
+      sine = f.n.dot(gphi.cross(gpsi)) / (gphi.norm() * gpsi.norm());
+    } while (std::abs(sine - std::sin(0.5)) < 0.05);
+    ExpectJacobiansMatchFiniteDifferences("TransversalityResidual", TransversalityResidual::Create(f.G, f.n, 0.5, f.area), values);
+  }
+}
+
+// φ, ψ of a face such that their gradients are the given tangent vectors: solve G u = ∇u
+// in the least-squares sense (exact for tangent targets: adding a constant is the null space).
+Eigen::Vector3d ValuesWithGradient(const Face& f, const Eigen::Vector3d& gradient) {
+  return f.G.colPivHouseholderQr().solve(gradient);
+}
+
+template <typename Functor>
+double Evaluate(const ceres::CostFunction* cost, const std::vector<double>& values) {
+  std::vector<const double*> blocks;
+  for (const double& v : values) blocks.push_back(&v);
+  double r[3] = {0, 0, 0};
+  EXPECT_TRUE(cost->Evaluate(blocks.data(), r, nullptr));
+  delete cost;
+  return Eigen::Vector3d(r[0], r[1], r[2]).norm();
+}
+
+TEST(LevelsetResiduals, KnownZerosAndValues) {
+  const Face f = RandomFace();
+  const Eigen::Vector3d d = RandomTangent(f.n), across = f.n.cross(d);
+  const double h = 2.0;
+  // Level lines along d: ∇φ = across / h.
+  const Eigen::Vector3d phi = ValuesWithGradient(f, across / h);
+  const std::vector<double> phi_values{phi[0], phi[1], phi[2]};
+  EXPECT_NEAR(Evaluate<AlignmentResidual>(AlignmentResidual::Create(f.G, d, 1.0, f.area, h), phi_values), 0.0, 1e-12);
+  EXPECT_NEAR(Evaluate<SpacingResidual>(SpacingResidual::Create(f.G, f.area, h), phi_values), 0.0, 1e-12);
+  // Level lines across d at unit sine: alignment r = √A.
+  const Eigen::Vector3d crossing = ValuesWithGradient(f, d / h);
+  EXPECT_NEAR(Evaluate<AlignmentResidual>(AlignmentResidual::Create(f.G, d, 1.0, f.area, h),
+                                          {crossing[0], crossing[1], crossing[2]}),
+              std::sqrt(f.area), 1e-12);
+  // Spacing 2h instead of h: r = √A (½ − 1).
+  EXPECT_NEAR(Evaluate<SpacingResidual>(SpacingResidual::Create(f.G, f.area, h), {phi[0] / 2, phi[1] / 2, phi[2] / 2}),
+              0.5 * std::sqrt(f.area), 1e-12);
+  // A linear function has no gradient jump across an edge of two coplanar faces.
+  EXPECT_NEAR(Evaluate<SmoothnessResidual>(SmoothnessResidual::Create(f.G, f.G, f.area, 0.5, h),
+                                           {phi[0], phi[1], phi[2], phi[2]}),
+              0.0, 1e-12);
+}
+
+TEST(LevelsetResiduals, ConjugacyVanishesOnPrincipalDirectionsAndIsScaleFree) {
+  const Face f = RandomFace();
+  const Eigen::Vector3d e1 = RandomTangent(f.n), e2 = f.n.cross(e1);
+  const Eigen::Matrix3d S = 0.3 * e1 * e1.transpose() - 0.1 * e2 * e2.transpose();  // principal frame (e1, e2)
+  // Level lines along e1 and e2: gradients n × ... rotated by 90°.
+  const Eigen::Vector3d phi = ValuesWithGradient(f, e2), psi = ValuesWithGradient(f, -e1);
+  auto conjugacy = [&](double sphi, double spsi, const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+    return Evaluate<ConjugacyResidual>(ConjugacyResidual::Create(f.G, f.n, S, 0.0, f.area),
+                                       {sphi * p[0], sphi * p[1], sphi * p[2], spsi * q[0], spsi * q[1], spsi * q[2]});
+  };
+  EXPECT_NEAR(conjugacy(1, 1, phi, psi), 0.0, 1e-12);
+  // Asymptotic-free oblique pair: not conjugate; the value does not change when φ, ψ scale.
+  const Eigen::Vector3d tilted = ValuesWithGradient(f, (e2 + 0.5 * e1).normalized());
+  const double r = conjugacy(1, 1, tilted, psi);
+  EXPECT_GT(r, 1e-3);
+  EXPECT_NEAR(conjugacy(3.5, 0.2, tilted, psi), r, 1e-12);
+}
+
+TEST(LevelsetResiduals, TransversalityPenalisesShallowCrossingsAndFoldOvers) {
+  const Face f = RandomFace();
+  const Eigen::Vector3d e1 = RandomTangent(f.n), e2 = f.n.cross(e1);
+  const Eigen::Vector3d phi = ValuesWithGradient(f, e1);
+  auto r = [&](const Eigen::Vector3d& psi_gradient) {
+    const Eigen::Vector3d psi = ValuesWithGradient(f, psi_gradient);
+    return Evaluate<TransversalityResidual>(TransversalityResidual::Create(f.G, f.n, M_PI / 6, f.area),
+                                            {phi[0], phi[1], phi[2], psi[0], psi[1], psi[2]});
+  };
+  EXPECT_NEAR(r(e2), 0.0, 1e-12);                                       // 90°, positive orientation
+  EXPECT_NEAR(r(std::cos(0.2) * e1 + std::sin(0.2) * e2), std::sqrt(f.area) * (0.5 - std::sin(0.2)), 1e-12);
+  EXPECT_NEAR(r(-e2), std::sqrt(f.area) * 1.5, 1e-12);                  // folded over: s = −1
+}
+
+}  // namespace
+}  // namespace pqlayout
