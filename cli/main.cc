@@ -68,6 +68,7 @@ int Main(int argc, char** argv) {
                "grid follows the flow of force (Schiftner & Balzer, statics-sensitive layout)."};
   app.set_version_flag("--version", VersionText());
   app.require_subcommand(1);
+  app.fallthrough();  // -q and -v also after the subcommand
   bool quiet = false;
   int verbose = 0;
   app.add_flag("-q,--quiet", quiet, "only warnings and errors");

@@ -15,6 +15,7 @@
 #include "problems/figures.h"
 #include "problems/guidance.h"
 #include "problems/stages.h"
+#include "problems/surface_fields.h"
 
 namespace pqlayout {
 
@@ -144,24 +145,16 @@ std::vector<double> ReadVertexField(SurfaceModel& surface, const std::string& na
 Status WriteGuidanceOutputs(const SurfaceModel& surface, const std::vector<double>& v_z, const GuidanceField& g,
                             OutputFiles* out) {
   std::vector<double> x(surface.num_vertices()), y(x.size()), z(x.size()), zero(x.size(), 0.0);
-  std::vector<Eigen::Vector3d> displacement(x.size());
   for (int v = 0; v < surface.num_vertices(); ++v) {
     const Eigen::Vector3d p = surface.position(v);
     x[v] = p.x(), y[v] = p.y(), z[v] = p.z();
-    displacement[v] = Eigen::Vector3d(0.0, 0.0, v_z[v]);
   }
   PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "x", "y", "z", "vx", "vy", "vz"}, {&x, &y, &z, &zero, &zero, &v_z},
                                    out->Path("fields/vertices.csv")));
   std::vector<double> dx(surface.num_faces()), dy(dx.size()), dz(dx.size());
   for (int f = 0; f < surface.num_faces(); ++f) dx[f] = g.direction[f].x(), dy[f] = g.direction[f].y(), dz[f] = g.direction[f].z();
-  PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "dx", "dy", "dz", "strain_max", "strain_min", "weight"},
-                                   {&dx, &dy, &dz, &g.major, &g.minor, &g.weight}, out->Path("fields/faces.csv")));
-  SurfaceFields fields;
-  fields.vertex_scalars = {{"v_z", v_z}};
-  fields.vertex_vectors = {{"displacement", displacement}};
-  fields.face_vectors = {{"guidance", g.direction}};
-  fields.face_scalars = {{"strain_max", g.major}, {"strain_min", g.minor}, {"magnitude", g.magnitude}, {"weight", g.weight}};
-  return WriteFieldsVtk(surface, fields, out->Path("fields.vtk"));
+  return WriteCsvTable({"id", "dx", "dy", "dz", "strain_max", "strain_min", "weight"},
+                       {&dx, &dy, &dz, &g.major, &g.minor, &g.weight}, out->Path("fields/faces.csv"));
 }
 
 nlohmann::json SingularityMetrics(const SurfaceModel& surface, const GuidanceField& g) {
@@ -232,6 +225,7 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
             << (*metrics)["singularities"]["by_index"].dump()
             << ", " << (*metrics)["n_sources"] << " sources (minima of the field's magnitude)";
   PQ_RETURN_IF_ERROR(WriteGuidanceOutputs(surface, v_z, g, out));
+  PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
   const bool strain = options.source == "strain";
   const std::string title = strain ? "Guidance: principal strain directions (integral curves)"
                                    : "Guidance: " + options.source + " directions (integral curves)";

@@ -7,6 +7,7 @@
 #include <queue>
 
 #include "geometry/differential_operators.h"
+#include "geometry/field_writers.h"
 #include "geometry/principal_directions.h"
 #include "problems/levelset.h"
 #include "problems/residuals/alignment_residual.h"
@@ -15,6 +16,7 @@
 #include "problems/residuals/spacing_residual.h"
 #include "problems/residuals/transversality_residual.h"
 #include "problems/stages.h"
+#include "problems/surface_fields.h"
 #include "solver/cholmod_solver.h"
 
 namespace pqlayout {
@@ -427,7 +429,7 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
       psi_problem.AddResidualBlock(ConjugacyResidual::Create(geo.G[f], n, geo.S[f], geo.flat_curvature, s.face_area(f)),
                                    Weight(w.conjugacy), std::vector<double*>(blocks, blocks + 6));
     if (w.transversality > 0.0)
-      psi_problem.AddResidualBlock(TransversalityResidual::Create(geo.G[f], n, min_angle, s.face_area(f)),
+      psi_problem.AddResidualBlock(TransversalityResidual::Create(geo.G[f], n, min_angle, s.face_area(f), h),
                                    Weight(w.transversality), std::vector<double*>(blocks, blocks + 6));
   }
   AddSpacing(s, geo, h, w.spacing, &psi, &psi_problem);
@@ -455,6 +457,8 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   *metrics = solution.metrics.ToJson();
   (*metrics)["initial_guess"] = solution.initial.ToJson();
   (*metrics)["ceres"] = solution.solver;
+  PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
+  PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
   const auto& m = solution.metrics;
   LOG(INFO) << "levelset: alignment " << m.alignment_rms_deg << "° RMS (" << m.alignment_rms_deg_strong
             << "° where weight > 0.5), spacing CV φ " << m.spacing_cv_phi << " ψ " << m.spacing_cv_psi

@@ -90,9 +90,9 @@ TEST(LevelsetResiduals, GradientCheckAtRandomPoints) {
       values = RandomValues(6);
       const Eigen::Vector3d gphi = f.G * Eigen::Vector3d(values[0], values[1], values[2]);
       const Eigen::Vector3d gpsi = f.G * Eigen::Vector3d(values[3], values[4], values[5]);
-      sine = f.n.dot(gphi.cross(gpsi)) / (gphi.norm() * gpsi.norm());
+      sine = h * h * f.n.dot(gphi.cross(gpsi));
     } while (std::abs(sine - std::sin(0.5)) < 0.05);
-    ExpectJacobiansMatchFiniteDifferences("TransversalityResidual", TransversalityResidual::Create(f.G, f.n, 0.5, f.area), values);
+    ExpectJacobiansMatchFiniteDifferences("TransversalityResidual", TransversalityResidual::Create(f.G, f.n, 0.5, f.area, h), values);
   }
 }
 
@@ -159,12 +159,14 @@ TEST(LevelsetResiduals, TransversalityPenalisesShallowCrossingsAndFoldOvers) {
   const Eigen::Vector3d phi = ValuesWithGradient(f, e1);
   auto r = [&](const Eigen::Vector3d& psi_gradient) {
     const Eigen::Vector3d psi = ValuesWithGradient(f, psi_gradient);
-    return Evaluate<TransversalityResidual>(TransversalityResidual::Create(f.G, f.n, M_PI / 6, f.area),
+    return Evaluate<TransversalityResidual>(TransversalityResidual::Create(f.G, f.n, M_PI / 6, f.area, 1.0),
                                             {phi[0], phi[1], phi[2], psi[0], psi[1], psi[2]});
   };
   EXPECT_NEAR(r(e2), 0.0, 1e-12);                                       // 90°, positive orientation
   EXPECT_NEAR(r(std::cos(0.2) * e1 + std::sin(0.2) * e2), std::sqrt(f.area) * (0.5 - std::sin(0.2)), 1e-12);
   EXPECT_NEAR(r(-e2), std::sqrt(f.area) * 1.5, 1e-12);                  // folded over: s = −1
+  EXPECT_NEAR(r(Eigen::Vector3d::Zero()), std::sqrt(f.area) * 0.5, 1e-12); // collapsed ψ: penalised too
+  EXPECT_NEAR(r(2.0 * e2), 0.0, 1e-12);                                  // denser ψ lines: s = 2 ≥ ½
 }
 
 }  // namespace

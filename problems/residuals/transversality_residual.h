@@ -1,9 +1,12 @@
 // Transversality (per face f): the two families cross at an angle of at least θ_min and
 // with a consistent orientation, so quads neither degenerate nor fold over. With
-//   s_f = n · (∇φ × ∇ψ) / (|∇φ| |∇ψ|)     (the signed sine of the crossing angle; s_f ≤ 0 is a
-//                                          fold-over of the map (φ, ψ))
+//   s_f = h² n · (∇φ × ∇ψ)   (the signed area of the map (φ, ψ) relative to an h × h cell:
+//                             the sine of the crossing angle wherever h|∇φ| = h|∇ψ| = 1;
+//                             s_f ≤ 0 is a fold-over)
 //   r_f = √A_f · max(0, sin θ_min − s_f)
-// a one-sided (hinge) penalty: zero while the crossing is steep enough.
+// a one-sided (hinge) penalty: zero while the crossing is steep enough. Unlike the
+// normalised sine, s_f keeps a non-zero derivative where a family collapses (∇ψ → 0), so
+// the optimiser cannot escape a fold-over by flattening ψ.
 // Parameters: φ at the face's three vertices, then ψ at the same vertices.
 #pragma once
 
@@ -17,30 +20,31 @@ namespace pqlayout {
 
 struct TransversalityResidual {
   TransversalityResidual(const Eigen::Matrix3d& basis_gradients, const Eigen::Vector3d& normal,
-                         double min_angle_radians, double area)
-      : G(basis_gradients), n(normal), sin_min(std::sin(min_angle_radians)), sqrt_area(std::sqrt(area)) {}
+                         double min_angle_radians, double area, double spacing)
+      : G(basis_gradients), n(normal), sin_min(std::sin(min_angle_radians)), sqrt_area(std::sqrt(area)),
+        h_squared(spacing * spacing) {}
 
   template <typename T>
   bool operator()(const T* const phi_a, const T* const phi_b, const T* const phi_c, const T* const psi_a,
                   const T* const psi_b, const T* const psi_c, T* residual) const {
     const Eigen::Matrix<T, 3, 1> gphi = P1Gradient(G, phi_a, phi_b, phi_c);
     const Eigen::Matrix<T, 3, 1> gpsi = P1Gradient(G, psi_a, psi_b, psi_c);
-    const T lengths = SafeNorm(gphi) * SafeNorm(gpsi);
-    const T sine = lengths > T(0.0) ? n.cast<T>().dot(gphi.cross(gpsi)) / lengths : T(0.0);
+    const T sine = T(h_squared) * n.cast<T>().dot(gphi.cross(gpsi));
     residual[0] = sine < T(sin_min) ? T(sqrt_area) * (T(sin_min) - sine) : T(0.0);
     return true;
   }
 
   static ceres::CostFunction* Create(const Eigen::Matrix3d& basis_gradients, const Eigen::Vector3d& normal,
-                                     double min_angle_radians, double area) {
+                                     double min_angle_radians, double area, double spacing) {
     return new ceres::AutoDiffCostFunction<TransversalityResidual, 1, 1, 1, 1, 1, 1, 1>(
-        new TransversalityResidual(basis_gradients, normal, min_angle_radians, area));
+        new TransversalityResidual(basis_gradients, normal, min_angle_radians, area, spacing));
   }
 
   const Eigen::Matrix3d G;
   const Eigen::Vector3d n;
   const double sin_min;
   const double sqrt_area;
+  const double h_squared;
 };
 
 }  // namespace pqlayout
