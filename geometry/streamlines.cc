@@ -1,12 +1,11 @@
 #include "geometry/streamlines.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <deque>
 #include <optional>
-
-#include <Eigen/Geometry>
 
 namespace pqlayout {
 namespace {
@@ -153,7 +152,8 @@ class SampleGrid {
   // True if a sample lies closer than r to p, ignoring samples of line `self` whose arc
   // length differs from `arc` by less than self_gap.
   bool Near(const Vector2d& p, double r, int self, double arc, double self_gap) const {
-    const int ci = Clamp((p.x() - origin_.x()) / cell_, nx_), cj = Clamp((p.y() - origin_.y()) / cell_, ny_);
+    const int ci = Clamp((p.x() - origin_.x()) / cell_, nx_),
+              cj = Clamp((p.y() - origin_.y()) / cell_, ny_);
     for (int j = std::max(cj - 1, 0); j <= std::min(cj + 1, ny_ - 1); ++j)
       for (int i = std::max(ci - 1, 0); i <= std::min(ci + 1, nx_ - 1); ++i)
         for (const Sample& s : cells_[j * nx_ + i]) {
@@ -164,9 +164,12 @@ class SampleGrid {
   }
 
  private:
-  static int Clamp(double x, int n) { return std::clamp(static_cast<int>(std::floor(x)), 0, n - 1); }
+  static int Clamp(double x, int n) {
+    return std::clamp(static_cast<int>(std::floor(x)), 0, n - 1);
+  }
   int CellOf(const Vector2d& p) const {
-    return Clamp((p.y() - origin_.y()) / cell_, ny_) * nx_ + Clamp((p.x() - origin_.x()) / cell_, nx_);
+    return Clamp((p.y() - origin_.y()) / cell_, ny_) * nx_ +
+           Clamp((p.x() - origin_.x()) / cell_, nx_);
   }
 
   Vector2d origin_;

@@ -18,22 +18,21 @@
 // valid only if at least dsep away from every line. Deterministic for a given input.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "geometry/surface_model.h"
 
 namespace pqlayout {
 
 struct StreamlineOptions {
-  double separation = 1.0;          // dsep, metres: distance between neighbouring lines
-  double test_ratio = 0.5;          // dtest = test_ratio · dsep stops a line near another
-  double step_ratio = 0.1;          // integration step = step_ratio · dsep
-  double min_length_ratio = 1.0;    // lines shorter than this · dsep are dropped
-  double max_length_ratio = 4.0;    // a line grows at most this × the bbox diagonal per side
-  double max_turn_deg = 45.0;       // a step turning more than this ends the line
-  double min_projected_norm = 1e-3; // |d_xy| / |d| below this: no field on the face
+  double separation = 1.0;           // dsep, metres: distance between neighbouring lines
+  double test_ratio = 0.5;           // dtest = test_ratio · dsep stops a line near another
+  double step_ratio = 0.1;           // integration step = step_ratio · dsep
+  double min_length_ratio = 1.0;     // lines shorter than this · dsep are dropped
+  double max_length_ratio = 4.0;     // a line grows at most this × the bbox diagonal per side
+  double max_turn_deg = 45.0;        // a step turning more than this ends the line
+  double min_projected_norm = 1e-3;  // |d_xy| / |d| below this: no field on the face
 };
 
 // Evenly spaced polylines (xy, metres) of the line field `directions` (one 3D vector per

@@ -17,24 +17,37 @@ struct ColourStop {
 
 // matplotlib's viridis table (256 entries) sampled at every 16th entry and the last.
 constexpr std::array<ColourStop, 17> kViridis = {{
-    {0 / 255.0, 0.267004, 0.004874, 0.329415},   {16 / 255.0, 0.282327, 0.094955, 0.417331},
-    {32 / 255.0, 0.278826, 0.175490, 0.483397},  {48 / 255.0, 0.258965, 0.251537, 0.524736},
-    {64 / 255.0, 0.229739, 0.322361, 0.545706},  {80 / 255.0, 0.199430, 0.387607, 0.554642},
-    {96 / 255.0, 0.172719, 0.448791, 0.557885},  {112 / 255.0, 0.149039, 0.508051, 0.557250},
-    {128 / 255.0, 0.127568, 0.566949, 0.550556}, {144 / 255.0, 0.120638, 0.625828, 0.533488},
-    {160 / 255.0, 0.157851, 0.683765, 0.501686}, {176 / 255.0, 0.246070, 0.738910, 0.452024},
-    {192 / 255.0, 0.369214, 0.788888, 0.382914}, {208 / 255.0, 0.515992, 0.831158, 0.294279},
-    {224 / 255.0, 0.678489, 0.863742, 0.189503}, {240 / 255.0, 0.845561, 0.887322, 0.099702},
+    {0 / 255.0, 0.267004, 0.004874, 0.329415},
+    {16 / 255.0, 0.282327, 0.094955, 0.417331},
+    {32 / 255.0, 0.278826, 0.175490, 0.483397},
+    {48 / 255.0, 0.258965, 0.251537, 0.524736},
+    {64 / 255.0, 0.229739, 0.322361, 0.545706},
+    {80 / 255.0, 0.199430, 0.387607, 0.554642},
+    {96 / 255.0, 0.172719, 0.448791, 0.557885},
+    {112 / 255.0, 0.149039, 0.508051, 0.557250},
+    {128 / 255.0, 0.127568, 0.566949, 0.550556},
+    {144 / 255.0, 0.120638, 0.625828, 0.533488},
+    {160 / 255.0, 0.157851, 0.683765, 0.501686},
+    {176 / 255.0, 0.246070, 0.738910, 0.452024},
+    {192 / 255.0, 0.369214, 0.788888, 0.382914},
+    {208 / 255.0, 0.515992, 0.831158, 0.294279},
+    {224 / 255.0, 0.678489, 0.863742, 0.189503},
+    {240 / 255.0, 0.845561, 0.887322, 0.099702},
     {255 / 255.0, 0.993248, 0.906157, 0.143936},
 }};
 
 // ColorBrewer RdBu (11 classes), reversed so that low values are blue.
 constexpr std::array<ColourStop, 11> kBlueWhiteRed = {{
-    {0.0, 0x05 / 255.0, 0x30 / 255.0, 0x61 / 255.0}, {0.1, 0x21 / 255.0, 0x66 / 255.0, 0xac / 255.0},
-    {0.2, 0x43 / 255.0, 0x93 / 255.0, 0xc3 / 255.0}, {0.3, 0x92 / 255.0, 0xc5 / 255.0, 0xde / 255.0},
-    {0.4, 0xd1 / 255.0, 0xe5 / 255.0, 0xf0 / 255.0}, {0.5, 0xf7 / 255.0, 0xf7 / 255.0, 0xf7 / 255.0},
-    {0.6, 0xfd / 255.0, 0xdb / 255.0, 0xc7 / 255.0}, {0.7, 0xf4 / 255.0, 0xa5 / 255.0, 0x82 / 255.0},
-    {0.8, 0xd6 / 255.0, 0x60 / 255.0, 0x4d / 255.0}, {0.9, 0xb2 / 255.0, 0x18 / 255.0, 0x2b / 255.0},
+    {0.0, 0x05 / 255.0, 0x30 / 255.0, 0x61 / 255.0},
+    {0.1, 0x21 / 255.0, 0x66 / 255.0, 0xac / 255.0},
+    {0.2, 0x43 / 255.0, 0x93 / 255.0, 0xc3 / 255.0},
+    {0.3, 0x92 / 255.0, 0xc5 / 255.0, 0xde / 255.0},
+    {0.4, 0xd1 / 255.0, 0xe5 / 255.0, 0xf0 / 255.0},
+    {0.5, 0xf7 / 255.0, 0xf7 / 255.0, 0xf7 / 255.0},
+    {0.6, 0xfd / 255.0, 0xdb / 255.0, 0xc7 / 255.0},
+    {0.7, 0xf4 / 255.0, 0xa5 / 255.0, 0x82 / 255.0},
+    {0.8, 0xd6 / 255.0, 0x60 / 255.0, 0x4d / 255.0},
+    {0.9, 0xb2 / 255.0, 0x18 / 255.0, 0x2b / 255.0},
     {1.0, 0x67 / 255.0, 0x00 / 255.0, 0x1f / 255.0},
 }};
 
@@ -50,7 +63,8 @@ Rgb Interpolate(const std::array<ColourStop, N>& stops, double t) {
   const ColourStop& a = stops[i - 1];
   const ColourStop& b = stops[i];
   const double s = (t - a.t) / (b.t - a.t);
-  return {ToByte(a.r + s * (b.r - a.r)), ToByte(a.g + s * (b.g - a.g)), ToByte(a.b + s * (b.b - a.b))};
+  return {ToByte(a.r + s * (b.r - a.r)), ToByte(a.g + s * (b.g - a.g)),
+          ToByte(a.b + s * (b.b - a.b))};
 }
 
 // Appends `value` rounded to `decimals` decimals, without trailing zeros ("12.3", "-4", "0").
@@ -81,11 +95,20 @@ std::string EscapeXml(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -93,8 +116,8 @@ std::string EscapeXml(const std::string& text) {
 
 // Number of characters (UTF-8 code points), for text-width estimates.
 int CodePoints(const std::string& text) {
-  return static_cast<int>(std::count_if(text.begin(), text.end(),
-                                        [](char c) { return (c & 0xC0) != 0x80; }));
+  return static_cast<int>(
+      std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
 }
 
 // "×10⁻⁵" for exponent -5.
@@ -164,7 +187,8 @@ SvgCanvas::SvgCanvas(const Eigen::AlignedBox2d& world, double width_px, const st
 }
 
 double SvgCanvas::height() const {
-  const double below = SvgStyle::kBottomBand + legend_rows_ * SvgStyle::kLegendRow + SvgStyle::kPadding;
+  const double below =
+      SvgStyle::kBottomBand + legend_rows_ * SvgStyle::kLegendRow + SvgStyle::kPadding;
   return plot_origin_.y() + plot_size_.y() + below * unit();
 }
 
@@ -189,8 +213,10 @@ void SvgCanvas::CloseFaceGroup() {
 void SvgCanvas::Polygon(const std::vector<Eigen::Vector2d>& points, Rgb fill) {
   if (points.size() < 3) return;
   if (!face_group_open_) {
-    body_ += "<g fill=\"currentColor\" stroke=\"currentColor\" stroke-linejoin=\"round\" stroke-width=\"" +
-             Number(SvgStyle::kFaceSeamWidth * unit(), 2) + "\">\n";
+    body_ +=
+        "<g fill=\"currentColor\" stroke=\"currentColor\" stroke-linejoin=\"round\" "
+        "stroke-width=\"" +
+        Number(SvgStyle::kFaceSeamWidth * unit(), 2) + "\">\n";
     face_group_open_ = true;
   }
   body_ += "<path color=\"" + fill.Hex() + "\" d=\"M";
@@ -259,7 +285,8 @@ std::string PathData(const std::vector<std::vector<Eigen::Vector2d>>& lines, boo
 
 }  // namespace
 
-void SvgCanvas::Region(const std::vector<std::vector<Eigen::Vector2d>>& rings, const std::string& fill) {
+void SvgCanvas::Region(const std::vector<std::vector<Eigen::Vector2d>>& rings,
+                       const std::string& fill) {
   CloseFaceGroup();
   const std::string d = PathData(rings, true, SvgStyle::kMinPointSpacing * unit(),
                                  [this](const Eigen::Vector2d& p) { return ToPx(p); });
@@ -294,7 +321,8 @@ void SvgCanvas::HaloPolylines(const std::vector<std::vector<Eigen::Vector2d>>& l
   if (d.empty()) return;
   const std::string id = "l" + std::to_string(next_id_++);
   defs_ += "<path id=\"" + id + "\" d=\"" + d + "\"/>\n";
-  const Stroke halo{Rgb{255, 255, 255}, SvgStyle::kHaloWidthRatio * stroke.width, SvgStyle::kHaloOpacity};
+  const Stroke halo{Rgb{255, 255, 255}, SvgStyle::kHaloWidthRatio * stroke.width,
+                    SvgStyle::kHaloOpacity};
   for (const Stroke& s : {halo, stroke})
     body_ += "<use xlink:href=\"#" + id + "\" " + StrokeAttributes(s, unit()) + "/>\n";
 }
@@ -324,17 +352,20 @@ std::string SvgCanvas::HatchFill(Rgb colour) {
   const std::string s = Number(SvgStyle::kHatchSpacing * unit());
   defs_ += "<pattern id=\"" + id + "\" patternUnits=\"userSpaceOnUse\" width=\"" + s +
            "\" height=\"" + s + "\" patternTransform=\"rotate(45)\"><rect width=\"" + s +
-           "\" height=\"" + s + "\" fill=\"" + colour.Hex() +
-           "\" fill-opacity=\"" + Number(SvgStyle::kHatchOpacity, 2) + "\"/><rect width=\"" + Number(SvgStyle::kHatchWidth * unit()) +
-           "\" height=\"" + s + "\" fill=\"" + Darker(colour, SvgStyle::kHatchLineShade).Hex() + "\"/></pattern>\n";
+           "\" height=\"" + s + "\" fill=\"" + colour.Hex() + "\" fill-opacity=\"" +
+           Number(SvgStyle::kHatchOpacity, 2) + "\"/><rect width=\"" +
+           Number(SvgStyle::kHatchWidth * unit()) + "\" height=\"" + s + "\" fill=\"" +
+           Darker(colour, SvgStyle::kHatchLineShade).Hex() + "\"/></pattern>\n";
   return "url(#" + id + ")";
 }
 
 void SvgCanvas::ColourBar(ColourMap map, double lo, double hi, const std::string& label) {
   const double u = unit();
-  const Eigen::Vector2d top_left(plot_origin_.x() + plot_size_.x() + 24.0 * u, plot_origin_.y());
-  const Eigen::Vector2d size(SvgStyle::kColourBarWidth * u,
-                             std::min(0.7 * plot_size_.y(), SvgStyle::kColourBarMaxHeight * u));
+  const Eigen::Vector2d top_left(plot_origin_.x() + plot_size_.x() + SvgStyle::kColourBarGap * u,
+                                 plot_origin_.y());
+  const Eigen::Vector2d size(
+      SvgStyle::kColourBarWidth * u,
+      std::min(SvgStyle::kColourBarFill * plot_size_.y(), SvgStyle::kColourBarMaxHeight * u));
   const double magnitude = std::max(std::abs(lo), std::abs(hi));
   const int order = magnitude > 0.0 ? static_cast<int>(std::floor(std::log10(magnitude))) : 0;
   const int exponent = (order >= 4 || order <= -3) ? order : 0;
@@ -343,8 +374,9 @@ void SvgCanvas::ColourBar(ColourMap map, double lo, double hi, const std::string
   const std::string text = exponent == 0 ? label : label + " " + PowerOfTen(exponent);
   const double text_width = CodePoints(text) * SvgStyle::kCharWidth * SvgStyle::kLabelFont * u;
   const bool fits = top_left.x() + text_width <= width_ - SvgStyle::kPadding * u;
-  TextPx({fits ? top_left.x() : width_ - SvgStyle::kPadding * u, top_left.y() - 12.0 * u}, text,
-         SvgStyle::kLabelFont, fits ? "start" : "end");
+  TextPx({fits ? top_left.x() : width_ - SvgStyle::kPadding * u,
+          top_left.y() - 3.0 * SvgStyle::kTextGap * u},
+         text, SvgStyle::kLabelFont, fits ? "start" : "end");
 }
 
 void SvgCanvas::ColourBarGradient(ColourMap map, const Eigen::Vector2d& top_left,
@@ -358,10 +390,9 @@ void SvgCanvas::ColourBarGradient(ColourMap map, const Eigen::Vector2d& top_left
     defs_ += "<stop offset=\"" + Number(t, 4) + "\" stop-color=\"" + map(t).Hex() + "\"/>";
   }
   defs_ += "</linearGradient>\n";
-  body_ += "<rect x=\"" + Number(top_left.x()) + "\" y=\"" + Number(top_left.y()) +
-           "\" width=\"" + Number(size.x()) + "\" height=\"" + Number(size.y()) +
-           "\" fill=\"url(#" + id + ")\" stroke=\"" + SvgStyle::kInk + "\" stroke-width=\"" +
-           Number(unit(), 2) + "\"/>\n";
+  body_ += "<rect x=\"" + Number(top_left.x()) + "\" y=\"" + Number(top_left.y()) + "\" width=\"" +
+           Number(size.x()) + "\" height=\"" + Number(size.y()) + "\" fill=\"url(#" + id +
+           ")\" stroke=\"" + SvgStyle::kInk + "\" stroke-width=\"" + Number(unit(), 2) + "\"/>\n";
 }
 
 void SvgCanvas::ColourBarTicks(double lo, double hi, int exponent, const Eigen::Vector2d& top_left,
@@ -376,8 +407,9 @@ void SvgCanvas::ColourBarTicks(double lo, double hi, int exponent, const Eigen::
     const double s = hi > lo ? (tick / factor - lo) / (hi - lo) : 0.5;
     const double y = top_left.y() + (1.0 - s) * size.y();
     d += "M" + Number(x) + " " + Number(y) + "h" + Number(SvgStyle::kTickLength * u);
-    TextPx({x + (SvgStyle::kTickLength + 4.0) * u, y + 0.35 * SvgStyle::kTickFont * u},
-           Number(tick, decimals), SvgStyle::kTickFont, "start");
+    TextPx(
+        {x + (SvgStyle::kTickLength + SvgStyle::kTextGap) * u, y + 0.35 * SvgStyle::kTickFont * u},
+        Number(tick, decimals), SvgStyle::kTickFont, "start");
   }
   body_ += "<path fill=\"none\" stroke=\"" + std::string(SvgStyle::kInk) + "\" stroke-width=\"" +
            Number(u, 2) + "\" d=\"" + d + "\"/>\n";
@@ -388,7 +420,8 @@ void SvgCanvas::ScaleBar() {
   const double u = unit();
   const double length = NiceScaleBarLength(world_.sizes().x());
   const double px = length * scale_;
-  const double x = plot_origin_.x(), y = plot_origin_.y() + plot_size_.y() + 22.0 * u;
+  const double x = plot_origin_.x(),
+               y = plot_origin_.y() + plot_size_.y() + SvgStyle::kScaleBarOffset * u;
   const double h = SvgStyle::kScaleBarHeight * u;
   const std::string ink = SvgStyle::kInk;
   for (int half = 0; half < 2; ++half)
@@ -396,7 +429,7 @@ void SvgCanvas::ScaleBar() {
              Number(0.5 * px) + "\" height=\"" + Number(h) + "\" fill=\"" +
              (half == 0 ? ink : std::string("#ffffff")) + "\" stroke=\"" + ink +
              "\" stroke-width=\"" + Number(u, 2) + "\"/>\n";
-  const double text_y = y + h + (4.0 + SvgStyle::kLabelFont) * u;
+  const double text_y = y + h + (SvgStyle::kTextGap + SvgStyle::kLabelFont) * u;
   char text[32];
   std::snprintf(text, sizeof(text), "%g m", length);
   TextPx({x, text_y}, "0", SvgStyle::kLabelFont, "middle");
@@ -406,15 +439,17 @@ void SvgCanvas::ScaleBar() {
 void SvgCanvas::NorthArrow() {
   CloseFaceGroup();
   const double u = unit();
-  const double cx = plot_origin_.x() + plot_size_.x() + (24.0 + 0.5 * SvgStyle::kColourBarWidth) * u;
+  const double cx = plot_origin_.x() + plot_size_.x() +
+                    (SvgStyle::kColourBarGap + 0.5 * SvgStyle::kColourBarWidth) * u;
   const double bottom = plot_origin_.y() + plot_size_.y();
-  const double tip = bottom - (SvgStyle::kNorthArrowHeight - SvgStyle::kLabelFont - 4.0) * u;
-  const double half = 9.0 * u;
+  const double tip =
+      bottom - (SvgStyle::kNorthArrowHeight - SvgStyle::kLabelFont - SvgStyle::kTextGap) * u;
+  const double half = 0.5 * SvgStyle::kNorthArrowWidth * u;
   body_ += "<path fill=\"" + std::string(SvgStyle::kInk) + "\" d=\"M" + Number(cx) + " " +
            Number(tip) + "L" + Number(cx + half) + " " + Number(bottom) + " " + Number(cx) + " " +
            Number(bottom - 0.3 * (bottom - tip)) + " " + Number(cx - half) + " " + Number(bottom) +
            "Z\"/>\n";
-  TextPx({cx, tip - 4.0 * u}, "N", SvgStyle::kLabelFont, "middle");
+  TextPx({cx, tip - SvgStyle::kTextGap * u}, "N", SvgStyle::kLabelFont, "middle");
 }
 
 void SvgCanvas::Legend(const std::vector<LegendEntry>& entries) {
@@ -424,18 +459,23 @@ void SvgCanvas::Legend(const std::vector<LegendEntry>& entries) {
     const double y = plot_origin_.y() + plot_size_.y() +
                      (SvgStyle::kBottomBand + legend_rows_ * SvgStyle::kLegendRow) * u;
     body_ += "<rect x=\"" + Number(plot_origin_.x()) + "\" y=\"" + Number(y) + "\" width=\"" +
-             Number(28.0 * u) + "\" height=\"" + Number(16.0 * u) + "\" fill=\"" + entry.fill +
-             "\" stroke=\"" + SvgStyle::kInk + "\" stroke-width=\"" + Number(u, 2) + "\"/>\n";
-    TextPx({plot_origin_.x() + 38.0 * u, y + 13.0 * u}, entry.label, SvgStyle::kLabelFont, "start");
+             Number(SvgStyle::kSwatchWidth * u) + "\" height=\"" +
+             Number(SvgStyle::kSwatchHeight * u) + "\" fill=\"" + entry.fill + "\" stroke=\"" +
+             SvgStyle::kInk + "\" stroke-width=\"" + Number(u, 2) + "\"/>\n";
+    TextPx({plot_origin_.x() + (SvgStyle::kSwatchWidth + 2.5 * SvgStyle::kTextGap) * u,
+            y + (SvgStyle::kSwatchHeight - 3.0) * u},
+           entry.label, SvgStyle::kLabelFont, "start");
     ++legend_rows_;
   }
 }
 
 std::string SvgCanvas::ToSvg() const {
   const std::string w = Number(width_), h = Number(height());
-  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"" +
-                    w + "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\" font-family=\"" +
-                    SvgStyle::kFont + "\" fill=\"" + SvgStyle::kInk + "\">\n";
+  std::string svg =
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
+      "width=\"" +
+      w + "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\" font-family=\"" +
+      SvgStyle::kFont + "\" fill=\"" + SvgStyle::kInk + "\">\n";
   if (!defs_.empty()) svg += "<defs>\n" + defs_ + "</defs>\n";
   svg += "<rect width=\"" + w + "\" height=\"" + h + "\" fill=\"#ffffff\"/>\n";
   svg += body_;

@@ -8,12 +8,11 @@
 // which keeps files small.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "geometry/status.h"
 
@@ -31,33 +30,40 @@ using ColourMap = Rgb (*)(double);
 
 // Every size of the drawing, in px of a 1000 px wide drawing (scaled with the width).
 struct SvgStyle {
-  static constexpr double kReferenceWidth = 1000.0;  // sizes below are for this width
-  static constexpr double kPadding = 16.0;           // outer margin
-  static constexpr double kTitleFont = 24.0;         // title font size
-  static constexpr double kLabelFont = 15.0;         // colour-bar label, legend, scale bar
-  static constexpr double kTickFont = 13.0;          // colour-bar tick labels
-  static constexpr double kCharWidth = 0.56;         // mean glyph width / font size (layout)
-  static constexpr double kTopBand = 78.0;           // title row + colour-bar label row
-  static constexpr double kRightBand = 150.0;        // colour bar, tick labels, north arrow
-  static constexpr double kBottomBand = 62.0;        // scale bar row
-  static constexpr double kLegendRow = 26.0;         // height of one legend row
-  static constexpr double kMaxAspect = 1.5;          // plot height at most this × width
-  static constexpr double kColourBarWidth = 22.0;    // width of the colour bar
+  static constexpr double kReferenceWidth = 1000.0;     // sizes below are for this width
+  static constexpr double kPadding = 16.0;              // outer margin
+  static constexpr double kTitleFont = 24.0;            // title font size
+  static constexpr double kLabelFont = 15.0;            // colour-bar label, legend, scale bar
+  static constexpr double kTickFont = 13.0;             // colour-bar tick labels
+  static constexpr double kCharWidth = 0.56;            // mean glyph width / font size (layout)
+  static constexpr double kTopBand = 78.0;              // title row + colour-bar label row
+  static constexpr double kRightBand = 150.0;           // colour bar, tick labels, north arrow
+  static constexpr double kBottomBand = 62.0;           // scale bar row
+  static constexpr double kLegendRow = 26.0;            // height of one legend row
+  static constexpr double kMaxAspect = 1.5;             // plot height at most this × width
+  static constexpr double kTextGap = 4.0;               // between a mark and its label
+  static constexpr double kColourBarGap = 24.0;         // between the plot and the colour bar
+  static constexpr double kColourBarWidth = 22.0;       // width of the colour bar
+  static constexpr double kColourBarFill = 0.7;         // colour bar at most this × plot height
   static constexpr double kColourBarMaxHeight = 420.0;  // colour bar at most this high
-  static constexpr double kTickLength = 6.0;         // colour-bar and scale-bar ticks
-  static constexpr double kScaleBarHeight = 7.0;     // thickness of the scale bar
-  static constexpr double kNorthArrowHeight = 46.0;  // north arrow incl. its "N"
-  static constexpr double kOutlineWidth = 1.6;       // boundary outline stroke
-  static constexpr double kFaceSeamWidth = 0.5;      // same-colour stroke hiding AA seams
-  static constexpr double kHatchSpacing = 8.0;       // hatch pattern period
-  static constexpr double kHatchWidth = 1.4;         // hatch line width
-  static constexpr double kHatchOpacity = 0.7;       // opacity of the hatch background
-  static constexpr double kHatchLineShade = 0.7;     // hatch lines: background colour × this
-  static constexpr double kHaloWidthRatio = 2.4;     // halo width / line width (HaloPolylines)
-  static constexpr double kHaloOpacity = 0.4;        // halo opacity
-  static constexpr double kMinPointSpacing = 0.6;    // polyline points closer are dropped
-  static constexpr const char* kFont = "sans-serif";  // generic family only
-  static constexpr const char* kInk = "#222222";      // text and frame colour
+  static constexpr double kTickLength = 6.0;            // colour-bar ticks
+  static constexpr double kScaleBarOffset = 22.0;       // from the plot's bottom edge
+  static constexpr double kScaleBarHeight = 7.0;        // thickness of the scale bar
+  static constexpr double kNorthArrowHeight = 46.0;     // north arrow incl. its "N"
+  static constexpr double kNorthArrowWidth = 18.0;      // width of the arrow head
+  static constexpr double kSwatchWidth = 28.0;          // legend swatch
+  static constexpr double kSwatchHeight = 16.0;         // legend swatch
+  static constexpr double kOutlineWidth = 1.6;          // boundary outline stroke
+  static constexpr double kFaceSeamWidth = 0.5;         // same-colour stroke hiding AA seams
+  static constexpr double kHatchSpacing = 8.0;          // hatch pattern period
+  static constexpr double kHatchWidth = 1.4;            // hatch line width
+  static constexpr double kHatchOpacity = 0.7;          // opacity of the hatch background
+  static constexpr double kHatchLineShade = 0.7;        // hatch lines: background colour × this
+  static constexpr double kHaloWidthRatio = 2.4;        // halo width / line width (HaloPolylines)
+  static constexpr double kHaloOpacity = 0.4;           // halo opacity
+  static constexpr double kMinPointSpacing = 0.6;       // polyline points closer are dropped
+  static constexpr const char* kFont = "sans-serif";    // generic family only
+  static constexpr const char* kInk = "#222222";        // text and frame colour
 };
 
 // A stroke for polylines: colour, width in px of the reference width, opacity.
@@ -86,7 +92,7 @@ class SvgCanvas {
   SvgCanvas(const Eigen::AlignedBox2d& world, double width_px, const std::string& title);
 
   double width() const { return width_; }
-  double height() const;  // grows with the legend rows
+  double height() const;                                              // grows with the legend rows
   double unit() const { return width_ / SvgStyle::kReferenceWidth; }  // px per style px
   double px_per_metre() const { return scale_; }
   Eigen::Vector2d plot_size_px() const { return plot_size_; }
@@ -135,17 +141,18 @@ class SvgCanvas {
   void AddPx(const Eigen::Vector2d& world);  // appends "x y" in px to body_
   void TextPx(const Eigen::Vector2d& px, const std::string& text, double size,
               const std::string& anchor);
-  void ColourBarGradient(ColourMap map, const Eigen::Vector2d& top_left, const Eigen::Vector2d& size);
+  void ColourBarGradient(ColourMap map, const Eigen::Vector2d& top_left,
+                         const Eigen::Vector2d& size);
   void ColourBarTicks(double lo, double hi, int exponent, const Eigen::Vector2d& top_left,
                       const Eigen::Vector2d& size);
 
   Eigen::AlignedBox2d world_;
   double width_ = 0.0;
-  double scale_ = 1.0;              // px per metre
-  Eigen::Vector2d plot_origin_;     // px of the plot's top-left corner
-  Eigen::Vector2d plot_size_;       // px
+  double scale_ = 1.0;           // px per metre
+  Eigen::Vector2d plot_origin_;  // px of the plot's top-left corner
+  Eigen::Vector2d plot_size_;    // px
   int legend_rows_ = 0;
-  int next_id_ = 0;                 // for pattern/gradient ids
+  int next_id_ = 0;  // for pattern/gradient ids
   bool face_group_open_ = false;
   std::string defs_;
   std::string body_;

@@ -12,11 +12,11 @@ namespace {
 using Eigen::Vector2d;
 using Rings = std::vector<std::vector<Vector2d>>;
 
-constexpr int kColourLevels = 64;             // colour quantisation of the resampled grid
-constexpr double kNotEnforcedWeight = 0.5;    // weight below this: alignment not enforced
-constexpr double kSignedTolerance = 1e-3;     // a sign counts above this × the other's size
-const Rgb kMutedBrown{0xc4, 0xa2, 0x7a};        // hatch of the not-enforced region
-const Rgb kOutline{0, 0, 0};                    // boundary outline
+constexpr int kColourLevels = 64;           // colour quantisation of the resampled grid
+constexpr double kNotEnforcedWeight = 0.5;  // weight below this: alignment not enforced
+constexpr double kSignedTolerance = 1e-3;   // a sign counts above this × the other's size
+const Rgb kMutedBrown{0xc4, 0xa2, 0x7a};    // hatch of the not-enforced region
+const Rgb kOutline{0, 0, 0};                // boundary outline
 const Stroke kStreamline{Rgb{0x30, 0x30, 0x30}, 1.1, 0.9};  // integral curves
 
 // The colour map and value range for a field: a symmetric diverging map for values of
@@ -69,9 +69,9 @@ double Cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y(
 
 // Colour level (0..kColourLevels-1) of every grid cell whose centre lies in a face, -1
 // elsewhere; cells of size `cell` metres cover `box` row by row from its min corner.
-std::vector<int> RasteriseLevels(const SurfaceModel& surface, const std::vector<double>& face_values,
-                                 const ColourScale& scale, const Eigen::AlignedBox2d& box,
-                                 double cell, int nx, int ny) {
+std::vector<int> RasteriseLevels(const SurfaceModel& surface,
+                                 const std::vector<double>& face_values, const ColourScale& scale,
+                                 const Eigen::AlignedBox2d& box, double cell, int nx, int ny) {
   constexpr double kTolerance = 1e-9;  // centres on a shared edge belong to both faces
   std::vector<int> level(static_cast<size_t>(nx) * ny, -1);
   for (int f = 0; f < surface.num_faces(); ++f) {
@@ -83,8 +83,8 @@ std::vector<int> RasteriseLevels(const SurfaceModel& surface, const std::vector<
     const Vector2d hi = (a.cwiseMax(b).cwiseMax(c) - box.min()) / cell;
     const auto [i0, i1] = CentresWithin(lo.x(), hi.x(), nx);
     const auto [j0, j1] = CentresWithin(lo.y(), hi.y(), ny);
-    const int t = std::clamp(static_cast<int>(scale.T(face_values[f]) * kColourLevels), 0,
-                             kColourLevels - 1);
+    const int t =
+        std::clamp(static_cast<int>(scale.T(face_values[f]) * kColourLevels), 0, kColourLevels - 1);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         const Vector2d p = box.min() + cell * Vector2d(i + 0.5, j + 0.5);
@@ -99,7 +99,8 @@ std::vector<int> RasteriseLevels(const SurfaceModel& surface, const std::vector<
 // Resamples the face colours onto a grid of small squares and merges runs of equal colour
 // along each row into one box; one <path> per colour level.
 void DrawResampledColours(const SurfaceModel& surface, const std::vector<double>& face_values,
-                          const ColourScale& scale, const FigureOptions& options, SvgCanvas* canvas) {
+                          const ColourScale& scale, const FigureOptions& options,
+                          SvgCanvas* canvas) {
   const Eigen::AlignedBox2d box = TopViewBounds(surface);
   const double cell = options.grid_cell_px * canvas->unit() / canvas->px_per_metre();
   const int nx = std::max(1, static_cast<int>(std::ceil(box.sizes().x() / cell)));
@@ -112,7 +113,8 @@ void DrawResampledColours(const SurfaceModel& surface, const std::vector<double>
       int end = i + 1;
       while (end < nx && level[static_cast<size_t>(j) * nx + end] == t) ++end;
       if (t >= 0)
-        boxes[t].emplace_back(box.min() + cell * Vector2d(i, j), box.min() + cell * Vector2d(end, j + 1));
+        boxes[t].emplace_back(box.min() + cell * Vector2d(i, j),
+                              box.min() + cell * Vector2d(end, j + 1));
       i = end;
     }
   for (int t = 0; t < kColourLevels; ++t)
@@ -144,7 +146,8 @@ Rings RegionOutline(const SurfaceModel& surface, const std::vector<char>& in_reg
   std::vector<char> used(mesh.n_halfedges(), 0);
   Rings rings;
   for (const auto start : mesh.halfedges()) {
-    if (used[start.idx()] || !inside(start) || inside(mesh.opposite_halfedge_handle(start))) continue;
+    if (used[start.idx()] || !inside(start) || inside(mesh.opposite_halfedge_handle(start)))
+      continue;
     std::vector<Vector2d> ring;
     for (HalfedgeHandle h = start; !used[h.idx()]; h = next_on_outline(h)) {
       used[h.idx()] = 1;
@@ -176,8 +179,9 @@ void DrawFrame(const SurfaceModel& surface, const ColourScale& scale, const std:
 Status CheckFinite(const std::vector<double>& values, int expected, const std::string& name,
                    const std::string& element) {
   if (static_cast<int>(values.size()) != expected)
-    return Status::InvalidInput(name + " has " + std::to_string(values.size()) + " values, expected " +
-                                std::to_string(expected) + " (one per " + element + ")");
+    return Status::InvalidInput(name + " has " + std::to_string(values.size()) +
+                                " values, expected " + std::to_string(expected) + " (one per " +
+                                element + ")");
   for (size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
       return Status::InvalidInput(name + " is not finite at " + element + " " + std::to_string(i));
@@ -203,7 +207,8 @@ Status WriteDisplacementFigure(const SurfaceModel& surface, const std::vector<do
   return canvas.Write(path);
 }
 
-Status WriteGuidanceFigure(const SurfaceModel& surface, const std::vector<Eigen::Vector3d>& direction,
+Status WriteGuidanceFigure(const SurfaceModel& surface,
+                           const std::vector<Eigen::Vector3d>& direction,
                            const std::vector<double>& magnitude, const std::string& magnitude_label,
                            const std::vector<double>& weight, const std::string& title,
                            const std::string& path, const FigureOptions& options) {

@@ -11,10 +11,9 @@
 // thus gives a file of a few MB, independent of the face count.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "geometry/status.h"
 #include "geometry/surface_model.h"
@@ -39,9 +38,11 @@ Status WriteDisplacementFigure(const SurfaceModel& surface, const std::vector<do
 // Paper Fig. 6: top view; faces coloured by `magnitude` (viridis, colour bar labelled
 // `magnitude_label`); faces with weight < 0.5 (alignment not enforced) hatched in a muted
 // brown with a legend entry; evenly spaced integral curves of the line field `direction`
-// in dark grey on top; boundary outline; scale bar; north arrow; title. InvalidInput if a
-// per-face input does not have one finite value per face.
-Status WriteGuidanceFigure(const SurfaceModel& surface, const std::vector<Eigen::Vector3d>& direction,
+// in dark grey on top; boundary outline; scale bar; north arrow; title. InvalidInput if
+// `direction` does not have one vector per face (zero vectors: no field there) or
+// `magnitude` or `weight` does not have one finite value per face.
+Status WriteGuidanceFigure(const SurfaceModel& surface,
+                           const std::vector<Eigen::Vector3d>& direction,
                            const std::vector<double>& magnitude, const std::string& magnitude_label,
                            const std::vector<double>& weight, const std::string& title,
                            const std::string& path, const FigureOptions& options = {});
