@@ -1,11 +1,15 @@
 #include "geometry/streamlines.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <deque>
 #include <optional>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+#include "geometry/line_field_singularities.h"
 
 namespace pqlayout {
 namespace {
@@ -26,8 +30,9 @@ double Cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y(
 // The projected triangles that carry a field, with a uniform grid for point location.
 class TopViewLocator {
  public:
+  // Faces with `blocked` set carry no field.
   TopViewLocator(const SurfaceModel& surface, const std::vector<Eigen::Vector3d>& directions,
-                 double min_projected_norm) {
+                 const std::vector<char>& blocked, double min_projected_norm) {
     const int nf = surface.num_faces();
     triangles_.resize(nf);
     direction_.assign(nf, Vector2d::Zero());
@@ -38,7 +43,7 @@ class TopViewLocator {
       const Eigen::Vector3d& d = directions[f];
       const double projected_area = 0.5 * std::abs(Cross(triangles_[f][1] - triangles_[f][0],
                                                          triangles_[f][2] - triangles_[f][0]));
-      if (!d.allFinite() || d.head<2>().norm() <= min_projected_norm * d.norm() ||
+      if (blocked[f] || !d.allFinite() || d.head<2>().norm() <= min_projected_norm * d.norm() ||
           !(projected_area > kMinProjectedAreaRatio * surface.face_area(f)))
         continue;
       direction_[f] = d.head<2>().normalized();
@@ -228,12 +233,12 @@ class EvenlySpacedTracer {
     while (!queue_.empty()) {
       const int id = queue_.front();
       queue_.pop_front();
-      for (size_t i = 0; i < lines_[id].size(); ++i) {
-        const auto& line = lines_[id];
+      const std::vector<Vector2d> line = lines_[id];  // a copy: TryLine appends to lines_
+      for (size_t i = 0; i < line.size(); ++i) {
         const Vector2d tangent =
             (line[std::min(i + 1, line.size() - 1)] - line[i > 0 ? i - 1 : 0]).normalized();
         const Vector2d normal(-tangent.y(), tangent.x());
-        for (const double side : {1.0, -1.0}) TryLine(lines_[id][i] + side * dsep_ * normal);
+        for (const double side : {1.0, -1.0}) TryLine(line[i] + side * dsep_ * normal);
       }
     }
   }
@@ -247,23 +252,28 @@ class EvenlySpacedTracer {
   }
 
   // Grows one side of line `id` from `seed` along `d`; arc lengths get sign `sense`.
-  std::vector<Vector2d> Grow(const Vector2d& seed, Vector2d d, double sense, int id) {
+  std::vector<Vector2d> Grow(const Vector2d& seed, const Vector2d& d, double sense, int id) {
     std::vector<Vector2d> points{seed};
+    std::vector<Vector2d> headings{d};  // of every step, to bound the turning over dsep
+    const size_t window = std::max<long>(1, std::lround(dsep_ / step_));
     int face = -1;
     for (double arc = 0.0; arc < max_length_; arc += step_) {
       const Vector2d p = points.back();
-      const auto k1 = FieldAt(p, d, &face);
-      if (!k1 || k1->dot(d) < cos_max_turn_) break;
+      const auto k1 = FieldAt(p, headings.back(), &face);
+      if (!k1) break;
       int mid_face = face;
       const auto k2 = FieldAt(p + 0.5 * step_ * *k1, *k1, &mid_face);
-      if (k2 && k2->dot(*k1) < cos_max_turn_) break;
-      const Vector2d q = p + step_ * (k2 ? *k2 : *k1);
+      const Vector2d heading = k2 ? *k2 : *k1;
+      if (heading.dot(headings[headings.size() - std::min(window, headings.size())]) <
+          cos_max_turn_)
+        break;  // turning too fast: a singularity
+      const Vector2d q = p + step_ * heading;
       if (!k2 || field_.Locate(q, mid_face) < 0) {
         AddIfFree(ClipToField(p, q), sense * (arc + step_), id, &points);
         break;
       }
       if (!AddIfFree(q, sense * (arc + step_), id, &points)) break;
-      d = *k2;
+      headings.push_back(heading);
     }
     return points;
   }
@@ -300,6 +310,18 @@ class EvenlySpacedTracer {
   std::deque<int> queue_;  // accepted lines whose sides are not yet seeded
 };
 
+// Marks the faces around the vertices where the line field has a non-zero index.
+std::vector<char> FacesAtSingularities(const SurfaceModel& surface,
+                                       const std::vector<Eigen::Vector3d>& directions,
+                                       const StreamlineOptions& options) {
+  std::vector<char> blocked(surface.num_faces(), 0);
+  if (!options.stop_at_singularities) return blocked;
+  for (const auto& singularity : FindLineFieldSingularities(surface, directions))
+    for (const auto f : surface.mesh().vf_range(VertexHandle(singularity.vertex)))
+      blocked[f.idx()] = 1;
+  return blocked;
+}
+
 }  // namespace
 
 std::vector<std::vector<Eigen::Vector2d>> EvenlySpacedStreamlines(
@@ -308,7 +330,9 @@ std::vector<std::vector<Eigen::Vector2d>> EvenlySpacedStreamlines(
   if (!(options.separation > 0.0) || !(options.step_ratio > 0.0) ||
       static_cast<int>(directions.size()) != surface.num_faces())
     return {};
-  const TopViewLocator field(surface, directions, options.min_projected_norm);
+  const TopViewLocator field(surface, directions,
+                             FacesAtSingularities(surface, directions, options),
+                             options.min_projected_norm);
   if (field.empty()) return {};
   return EvenlySpacedTracer(field, options).Run();
 }

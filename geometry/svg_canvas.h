@@ -8,11 +8,12 @@
 // which keeps files small.
 #pragma once
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "geometry/status.h"
 

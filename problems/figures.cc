@@ -34,8 +34,8 @@ ColourScale ScaleFor(const std::vector<double>& values, bool allow_diverging) {
   if (allow_diverging && -scale.lo > kSignedTolerance * extent &&
       scale.hi > kSignedTolerance * extent)
     scale = {BlueWhiteRed, -extent, extent};
-  if (!(scale.hi > scale.lo)) {  // constant field: a unit-wide range around it
-    const double pad = std::max(0.5 * std::abs(scale.lo), 1e-12);
+  if (!(scale.hi > scale.lo)) {  // constant field: ±50 % around it (±1 around zero)
+    const double pad = scale.lo == 0.0 ? 1.0 : 0.5 * std::abs(scale.lo);
     scale.lo -= pad;
     scale.hi += pad;
   }

@@ -11,9 +11,10 @@
 // thus gives a file of a few MB, independent of the face count.
 #pragma once
 
-#include <Eigen/Core>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "geometry/status.h"
 #include "geometry/surface_model.h"
