@@ -330,7 +330,9 @@ KeyTable::KeyTable(Config* c) {
   Number("levelset.weights.conjugacy", &lw.conjugacy, kNonNegative, "the two families are conjugate: II(n×∇φ, n×∇ψ) = 0");
   Number("levelset.weights.transversality", &lw.transversality, kNonNegative, "crossing angle of the families ≥ levelset.min_angle");
   Number("levelset.min_angle", &c->levelset.min_angle, Range{0.0, 90.0, true, true}, "minimum crossing angle of the two families, degrees");
-  Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000, "Ceres iterations per solve");
+  Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000, "Ceres iterations of the φ solve and of the ψ solve");
+  Integer("levelset.joint_iterations", &c->levelset.joint_iterations, 0, 100000,
+          "Ceres iterations of the final solve of φ and ψ together (0: none)");
 
   Number("extract.corner_angle", &c->extract.corner_angle, Range{0.0, 180.0, true, true}, "boundary turning angle above which a vertex is a corner, degrees");
   Number("extract.min_edge", &c->extract.min_edge, Range{0.0, 1.0, false, true}, "edges shorter than min_edge × h are merged");

@@ -70,18 +70,21 @@ struct LayoutOptions {
   double spacing = 3.0;  // h: distance between neighbouring level lines, m
 };
 
+// Defaults from a weight sweep on the Great Court (README, "Level sets"): the terms are
+// area integrals of dimensionless quantities, so the weights carry over to other roofs.
 struct LevelsetWeights {
-  double alignment = 1.0;       // φ's level lines follow the guidance
-  double spacing = 1.0;         // h|∇φ| = 1 and h|∇ψ| = 1
-  double smoothness = 0.1;      // gradient difference across interior edges
-  double conjugacy = 1.0;       // II(n×∇φ, n×∇ψ) = 0
-  double transversality = 1.0;  // crossing angle ≥ levelset.min_angle
+  double alignment = 10.0;        // φ's level lines follow the guidance
+  double spacing = 3.0;           // h|∇φ| = 1 and h|∇ψ| = 1
+  double smoothness = 0.01;       // h² × gradient jump per unit length across interior edges
+  double conjugacy = 0.1;         // II(n×∇φ, n×∇ψ) = 0
+  double transversality = 100.0;  // crossing angle ≥ levelset.min_angle, no fold-overs
 };
 
 struct LevelsetOptions {
   LevelsetWeights weights;
   double min_angle = 30.0;  // minimum crossing angle of the two families, degrees
-  int max_iterations = 200; // Ceres iterations per solve
+  int max_iterations = 400;   // Ceres iterations of the φ solve and of the ψ solve
+  int joint_iterations = 300; // Ceres iterations of the final joint solve (0: none)
 };
 
 struct ExtractOptions {

@@ -404,40 +404,56 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
                                 std::vector<double>(s.num_faces(), 1.0), &solution->psi));
   solution->initial = Measure(s, geo, g, solution->phi, solution->psi);
 
-  // 1. φ: alignment + spacing + smoothness.
   std::vector<double>& phi = solution->phi;
+  std::vector<double>& psi = solution->psi;
+  // φ's terms: alignment + spacing + smoothness.
+  auto add_phi_terms = [&](ceres::Problem* problem) {
+    for (int f = 0; f < s.num_faces(); ++f) {
+      const auto ids = s.face_vertices(f);
+      if (w.alignment > 0.0 && g.weight[f] > 0.0)
+        problem->AddResidualBlock(AlignmentResidual::Create(geo.G[f], g.direction[f], g.weight[f], s.face_area(f), h),
+                                  Weight(w.alignment), &phi[ids[0]], &phi[ids[1]], &phi[ids[2]]);
+    }
+    AddSpacing(s, geo, h, w.spacing, &phi, problem);
+    AddSmoothness(edges, h, w.smoothness, &phi, problem);
+  };
+  // ψ's terms: conjugacy + transversality (both also involve φ) + spacing + smoothness.
+  auto add_psi_terms = [&](ceres::Problem* problem) {
+    for (int f = 0; f < s.num_faces(); ++f) {
+      const auto ids = s.face_vertices(f);
+      const std::vector<double*> blocks{&phi[ids[0]], &phi[ids[1]], &phi[ids[2]],
+                                        &psi[ids[0]], &psi[ids[1]], &psi[ids[2]]};
+      const Eigen::Vector3d& n = s.face_normal(f);
+      if (w.conjugacy > 0.0)
+        problem->AddResidualBlock(ConjugacyResidual::Create(geo.G[f], n, geo.S[f], geo.flat_curvature, s.face_area(f)),
+                                  Weight(w.conjugacy), blocks);
+      if (w.transversality > 0.0)
+        problem->AddResidualBlock(TransversalityResidual::Create(geo.G[f], n, min_angle, s.face_area(f), h),
+                                  Weight(w.transversality), blocks);
+    }
+    AddSpacing(s, geo, h, w.spacing, &psi, problem);
+    AddSmoothness(edges, h, w.smoothness, &psi, problem);
+  };
+
+  // 1. φ alone.
   ceres::Problem phi_problem;
-  for (int f = 0; f < s.num_faces(); ++f) {
-    const auto ids = s.face_vertices(f);
-    if (w.alignment > 0.0 && g.weight[f] > 0.0)
-      phi_problem.AddResidualBlock(AlignmentResidual::Create(geo.G[f], g.direction[f], g.weight[f], s.face_area(f), h),
-                                   Weight(w.alignment), &phi[ids[0]], &phi[ids[1]], &phi[ids[2]]);
-  }
-  AddSpacing(s, geo, h, w.spacing, &phi, &phi_problem);
-  AddSmoothness(edges, h, w.smoothness, &phi, &phi_problem);
+  add_phi_terms(&phi_problem);
   if (phi_problem.NumResidualBlocks() > 0)
     PQ_RETURN_IF_ERROR(Solve("phi", options.max_iterations, &phi_problem, &solution->solver["phi"]));
-
-  // 2. ψ with φ fixed: conjugacy + transversality + spacing + smoothness.
-  std::vector<double>& psi = solution->psi;
+  // 2. ψ with φ held.
   ceres::Problem psi_problem;
-  for (int f = 0; f < s.num_faces(); ++f) {
-    const auto ids = s.face_vertices(f);
-    double* blocks[6] = {&phi[ids[0]], &phi[ids[1]], &phi[ids[2]], &psi[ids[0]], &psi[ids[1]], &psi[ids[2]]};
-    const Eigen::Vector3d& n = s.face_normal(f);
-    if (w.conjugacy > 0.0)
-      psi_problem.AddResidualBlock(ConjugacyResidual::Create(geo.G[f], n, geo.S[f], geo.flat_curvature, s.face_area(f)),
-                                   Weight(w.conjugacy), std::vector<double*>(blocks, blocks + 6));
-    if (w.transversality > 0.0)
-      psi_problem.AddResidualBlock(TransversalityResidual::Create(geo.G[f], n, min_angle, s.face_area(f), h),
-                                   Weight(w.transversality), std::vector<double*>(blocks, blocks + 6));
-  }
-  AddSpacing(s, geo, h, w.spacing, &psi, &psi_problem);
-  AddSmoothness(edges, h, w.smoothness, &psi, &psi_problem);
+  add_psi_terms(&psi_problem);
   for (double& value : phi)
     if (psi_problem.HasParameterBlock(&value)) psi_problem.SetParameterBlockConstant(&value);
   if (psi_problem.NumResidualBlocks() > 0)
     PQ_RETURN_IF_ERROR(Solve("psi", options.max_iterations, &psi_problem, &solution->solver["psi"]));
+  // 3. Both together, so that φ can give way where ψ cannot cross it steeply enough.
+  if (options.joint_iterations > 0) {
+    ceres::Problem joint_problem;
+    add_phi_terms(&joint_problem);
+    add_psi_terms(&joint_problem);
+    PQ_RETURN_IF_ERROR(Solve("joint", options.joint_iterations, &joint_problem, &solution->solver["joint"]));
+  }
 
   solution->metrics = Measure(s, geo, g, phi, psi);
   return Status::Ok();

@@ -90,8 +90,11 @@ TEST(LevelsetResiduals, GradientCheckAtRandomPoints) {
       values = RandomValues(6);
       const Eigen::Vector3d gphi = f.G * Eigen::Vector3d(values[0], values[1], values[2]);
       const Eigen::Vector3d gpsi = f.G * Eigen::Vector3d(values[3], values[4], values[5]);
-      sine = h * h * f.n.dot(gphi.cross(gpsi));
-    } while (std::abs(sine - std::sin(0.5)) < 0.05);
+      sine = f.n.dot(gphi.cross(gpsi)) / std::max(gphi.norm() * gpsi.norm(), 1.0 / (h * h));
+      // Also away from the kink of max(|∇φ||∇ψ|, 1/h²).
+    } while (std::abs(sine - std::sin(0.5)) < 0.05 ||
+             std::abs(h * h * (f.G * Eigen::Vector3d(values[0], values[1], values[2])).norm() *
+                          (f.G * Eigen::Vector3d(values[3], values[4], values[5])).norm() - 1.0) < 0.05);
     ExpectJacobiansMatchFiniteDifferences("TransversalityResidual", TransversalityResidual::Create(f.G, f.n, 0.5, f.area, h), values);
   }
 }
@@ -166,7 +169,10 @@ TEST(LevelsetResiduals, TransversalityPenalisesShallowCrossingsAndFoldOvers) {
   EXPECT_NEAR(r(std::cos(0.2) * e1 + std::sin(0.2) * e2), std::sqrt(f.area) * (0.5 - std::sin(0.2)), 1e-12);
   EXPECT_NEAR(r(-e2), std::sqrt(f.area) * 1.5, 1e-12);                  // folded over: s = −1
   EXPECT_NEAR(r(Eigen::Vector3d::Zero()), std::sqrt(f.area) * 0.5, 1e-12); // collapsed ψ: penalised too
-  EXPECT_NEAR(r(2.0 * e2), 0.0, 1e-12);                                  // denser ψ lines: s = 2 ≥ ½
+  EXPECT_NEAR(r(2.0 * e2), 0.0, 1e-12);                                  // denser ψ lines at 90°
+  // Denser ψ lines at a shallow angle are penalised by their angle, not their density.
+  EXPECT_NEAR(r(3.0 * (std::cos(0.2) * e1 + std::sin(0.2) * e2)), std::sqrt(f.area) * (0.5 - std::sin(0.2)), 1e-12);
+  EXPECT_NEAR(r(0.5 * e2), std::sqrt(f.area) * 0.0, 1e-12);              // sparser at 90°: area ½ ≥ ½
 }
 
 }  // namespace

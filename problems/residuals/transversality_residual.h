@@ -1,12 +1,13 @@
 // Transversality (per face f): the two families cross at an angle of at least θ_min and
 // with a consistent orientation, so quads neither degenerate nor fold over. With
-//   s_f = h² n · (∇φ × ∇ψ)   (the signed area of the map (φ, ψ) relative to an h × h cell:
-//                             the sine of the crossing angle wherever h|∇φ| = h|∇ψ| = 1;
-//                             s_f ≤ 0 is a fold-over)
+//   s_f = n · (∇φ × ∇ψ) / max(|∇φ| |∇ψ|, 1/h²)
 //   r_f = √A_f · max(0, sin θ_min − s_f)
-// a one-sided (hinge) penalty: zero while the crossing is steep enough. Unlike the
-// normalised sine, s_f keeps a non-zero derivative where a family collapses (∇ψ → 0), so
-// the optimiser cannot escape a fold-over by flattening ψ.
+// s_f is the signed sine of the crossing angle wherever the lines are at least as dense as
+// h (s_f ≤ 0 is a fold-over of the map (φ, ψ)), and the signed area of the map relative to
+// an h × h cell where they are sparser. The hinge is zero while the crossing is steep
+// enough. Unlike the plain sine, s_f keeps a non-zero derivative where a family collapses
+// (∇ψ → 0), so the optimiser cannot escape a fold-over by flattening ψ; unlike the plain
+// area, dense lines cannot satisfy it at a shallow angle.
 // Parameters: φ at the face's three vertices, then ψ at the same vertices.
 #pragma once
 
@@ -29,7 +30,9 @@ struct TransversalityResidual {
                   const T* const psi_b, const T* const psi_c, T* residual) const {
     const Eigen::Matrix<T, 3, 1> gphi = P1Gradient(G, phi_a, phi_b, phi_c);
     const Eigen::Matrix<T, 3, 1> gpsi = P1Gradient(G, psi_a, psi_b, psi_c);
-    const T sine = T(h_squared) * n.cast<T>().dot(gphi.cross(gpsi));
+    const T lengths = SafeNorm(gphi) * SafeNorm(gpsi);
+    const T denominator = lengths > T(1.0 / h_squared) ? lengths : T(1.0 / h_squared);
+    const T sine = n.cast<T>().dot(gphi.cross(gpsi)) / denominator;
     residual[0] = sine < T(sin_min) ? T(sqrt_area) * (T(sin_min) - sine) : T(0.0);
     return true;
   }
