@@ -146,7 +146,7 @@ TEST(Config, ResolvedJsonMirrorsTheKeys) {
   ASSERT_TRUE(Parse("layout:\n  spacing: 2\n", &c, {"boundary.rules=[{select: inner, condition: free}]"}).ok());
   const auto j = ConfigToJson(c);
   EXPECT_EQ(j["layout"]["spacing"], 2.0);
-  EXPECT_EQ(j["levelset"]["weights"]["alignment"], 1.0);
+  EXPECT_EQ(j["levelset"]["weights"]["alignment"], 10.0);
   EXPECT_EQ(j["boundary"]["default"], "fixed");
   EXPECT_EQ(j["boundary"]["rules"][0]["select"], "inner");
   EXPECT_EQ(j["boundary"]["rules"][0]["condition"], "free");
