@@ -78,6 +78,24 @@ TEST(Cli, RunWritesReportAndSurface) {
             report["stages"]["surface"]["n_boundary_vertices"]);
   EXPECT_FALSE(report["pqlayout"]["git_revision"].get<std::string>().empty());
   EXPECT_TRUE(report["pqlayout"]["libraries"].contains("Ceres"));
+  // Field outputs (SPEC names and columns); fields.vtk carries every field for ParaView.
+  const std::string vertices = ReadAll(dir + "/result/fields/vertices.csv");
+  EXPECT_EQ(vertices.rfind("id,x,y,z,vx,vy,vz\n", 0), 0u);
+  EXPECT_EQ(CountLines(vertices), 1 + report["stages"]["surface"]["n_vertices"].get<int>());
+  const std::string faces = ReadAll(dir + "/result/fields/faces.csv");
+  EXPECT_EQ(faces.rfind("id,dx,dy,dz,strain_max,strain_min,weight\n", 0), 0u);
+  EXPECT_EQ(CountLines(faces), 1 + report["stages"]["surface"]["n_faces"].get<int>());
+  const std::string vtk = ReadAll(dir + "/result/fields.vtk");
+  EXPECT_NE(vtk.find("POINTS " + report["stages"]["surface"]["n_vertices"].dump() + " double"), std::string::npos);
+  EXPECT_NE(vtk.find("CELL_DATA " + report["stages"]["surface"]["n_faces"].dump()), std::string::npos);
+  for (const char* field : {"SCALARS v_z", "VECTORS guidance", "SCALARS weight", "SCALARS phi", "SCALARS psi"})
+    EXPECT_NE(vtk.find(field), std::string::npos) << field;
+  EXPECT_TRUE(fs::exists(dir + "/result/figures/displacement.svg"));
+  EXPECT_TRUE(fs::exists(dir + "/result/figures/guidance.svg"));
+  for (const char* key : {"alignment_rms_deg", "spacing_cv_phi", "spacing_cv_psi", "conjugacy_rms",
+                          "min_crossing_angle_deg", "foldovers"})
+    EXPECT_TRUE(report["stages"]["levelset"].contains(key)) << key;
+  EXPECT_TRUE(report["stages"]["membrane"].contains("max_displacement"));
   // Nothing is left behind in the parent folder.
   for (const auto& entry : fs::directory_iterator(dir))
     EXPECT_EQ(entry.path().filename().string().find(".result.partial"), std::string::npos);
