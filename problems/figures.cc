@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
+#include "geometry/level_lines.h"
 #include "geometry/streamlines.h"
 #include "geometry/svg_canvas.h"
 
@@ -18,6 +20,11 @@ constexpr double kSignedTolerance = 1e-3;   // a sign counts above this × the o
 const Rgb kMutedBrown{0xc4, 0xa2, 0x7a};    // hatch of the not-enforced region
 const Rgb kOutline{0, 0, 0};                // boundary outline
 const Stroke kStreamline{Rgb{0x30, 0x30, 0x30}, 1.1, 0.9};  // integral curves
+const Stroke kFaintStreamline{Rgb{0xb0, 0xb0, 0xb0}, 0.9, 0.9};  // background curves
+const Stroke kPhiLine{Rgb{0x00, 0x00, 0x00}, 1.5, 1.0};           // φ = i·h (paper: black)
+const Stroke kPsiLine{Rgb{0x1f, 0x5f, 0xd6}, 1.5, 1.0};           // ψ = j·h (paper: blue)
+constexpr double kMinLevelSpacingPx = 4.0;  // closer level lines (px of 1000 px): every k-th
+constexpr double kMaxLevelLines = 1000.0;   // per family, whatever the function's range
 
 // The colour map and value range for a field: a symmetric diverging map for values of
 // both signs, viridis from min to max otherwise.
@@ -168,12 +175,81 @@ Rings BoundaryOutline(const SurfaceModel& surface) {
   return rings;
 }
 
-void DrawFrame(const SurfaceModel& surface, const ColourScale& scale, const std::string& label,
-               SvgCanvas* canvas) {
+// Boundary outline, scale bar and north arrow.
+void DrawOutlineScaleAndNorth(const SurfaceModel& surface, SvgCanvas* canvas) {
   canvas->Polylines(BoundaryOutline(surface), Stroke{kOutline, SvgStyle::kOutlineWidth, 1.0}, true);
-  canvas->ColourBar(scale.map, scale.lo, scale.hi, label);
   canvas->ScaleBar();
   canvas->NorthArrow();
+}
+
+void DrawFrame(const SurfaceModel& surface, const ColourScale& scale, const std::string& label,
+               SvgCanvas* canvas) {
+  DrawOutlineScaleAndNorth(surface, canvas);
+  canvas->ColourBar(scale.map, scale.lo, scale.hi, label);
+}
+
+// The faces with weight < 0.5 as one hatched region; returns the hatch fill for the legend.
+std::string DrawNotEnforcedRegion(const SurfaceModel& surface, const std::vector<double>& weight,
+                                  SvgCanvas* canvas) {
+  std::vector<char> not_enforced(surface.num_faces());
+  for (int f = 0; f < surface.num_faces(); ++f) not_enforced[f] = weight[f] < kNotEnforcedWeight;
+  const std::string hatch = canvas->HatchFill(kMutedBrown);
+  canvas->Region(RegionOutline(surface, not_enforced), hatch);
+  return hatch;
+}
+
+std::vector<std::vector<Vector2d>> GuidanceCurves(const SurfaceModel& surface,
+                                                  const std::vector<Eigen::Vector3d>& direction,
+                                                  const FigureOptions& options,
+                                                  const SvgCanvas& canvas) {
+  StreamlineOptions streamlines;
+  streamlines.separation = options.streamline_spacing_px * canvas.unit() / canvas.px_per_metre();
+  return EvenlySpacedStreamlines(surface, direction, streamlines);
+}
+
+// The integer levels first, first + stride, ... ≤ last drawn for one function: every one
+// unless they would be closer than kMinLevelSpacingPx (min_stride) or more than
+// kMaxLevelLines.
+struct LevelSelection {
+  double first = 0.0;
+  double stride = 1.0;
+  int count = 0;
+};
+
+LevelSelection SelectLevels(const std::vector<double>& values, double min_stride) {
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  const double range = std::floor(*hi) - std::ceil(*lo) + 1.0;
+  LevelSelection levels;
+  levels.stride = std::max(min_stride, std::ceil(range / kMaxLevelLines));
+  levels.first = std::ceil(*lo / levels.stride) * levels.stride;
+  levels.count = *hi < levels.first
+                     ? 0
+                     : static_cast<int>(std::floor((*hi - levels.first) / levels.stride)) + 1;
+  return levels;
+}
+
+// The level lines of the selected levels in the top view.
+Rings TopViewLevelLines(const SurfaceModel& surface, const std::vector<double>& values,
+                        const LevelSelection& levels) {
+  Rings lines;
+  for (int k = 0; k < levels.count; ++k)
+    for (const auto& line : LevelLines(surface, values, levels.first + k * levels.stride)) {
+      std::vector<Vector2d> xy;
+      xy.reserve(line.size());
+      for (const auto& p : line) xy.push_back(p.head<2>());
+      lines.push_back(std::move(xy));
+    }
+  return lines;
+}
+
+std::string LevelLegendLabel(const std::string& family, double spacing, double stride,
+                             const std::string& meaning) {
+  std::ostringstream label;
+  label.precision(3);
+  label << "level lines " << family << ", h = " << spacing << " m";
+  if (stride > 1.0) label << ", one in " << stride << " drawn";
+  label << " (" << meaning << ")";
+  return label.str();
 }
 
 Status CheckFinite(const std::vector<double>& values, int expected, const std::string& name,
@@ -222,17 +298,49 @@ Status WriteGuidanceFigure(const SurfaceModel& surface,
   SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
   DrawFaceColours(surface, magnitude, scale, options, &canvas);
 
-  std::vector<char> not_enforced(nf);
-  for (int f = 0; f < nf; ++f) not_enforced[f] = weight[f] < kNotEnforcedWeight;
-  const std::string hatch = canvas.HatchFill(kMutedBrown);
-  canvas.Region(RegionOutline(surface, not_enforced), hatch);
-
-  StreamlineOptions streamlines;
-  streamlines.separation = options.streamline_spacing_px * canvas.unit() / canvas.px_per_metre();
-  canvas.HaloPolylines(EvenlySpacedStreamlines(surface, direction, streamlines), kStreamline);
+  const std::string hatch = DrawNotEnforcedRegion(surface, weight, &canvas);
+  canvas.HaloPolylines(GuidanceCurves(surface, direction, options, canvas), kStreamline);
 
   DrawFrame(surface, scale, magnitude_label, &canvas);
   canvas.Legend({{hatch, "alignment not enforced (weight < 0.5)"}});
+  return canvas.Write(path);
+}
+
+Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double>& phi,
+                           const std::vector<double>& psi, double spacing,
+                           const std::vector<Eigen::Vector3d>& direction,
+                           const std::vector<double>& weight, const std::string& title,
+                           const std::string& path, const FigureOptions& options) {
+  const int nf = surface.num_faces();
+  PQ_RETURN_IF_ERROR(CheckFinite(phi, surface.num_vertices(), "phi", "vertex").WithContext(path));
+  PQ_RETURN_IF_ERROR(CheckFinite(psi, surface.num_vertices(), "psi", "vertex").WithContext(path));
+  if (static_cast<int>(direction.size()) != nf)
+    return Status::InvalidInput(path + ": direction has " + std::to_string(direction.size()) +
+                                " vectors, expected " + std::to_string(nf) + " (one per face)");
+  PQ_RETURN_IF_ERROR(CheckFinite(weight, nf, "weight", "face").WithContext(path));
+  if (!(spacing > 0.0) || !std::isfinite(spacing))
+    return Status::InvalidInput(path + ": spacing h must be a positive number, got " +
+                                std::to_string(spacing));
+  SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
+  const std::string hatch = DrawNotEnforcedRegion(surface, weight, &canvas);
+  canvas.Polylines(GuidanceCurves(surface, direction, options, canvas), kFaintStreamline);
+
+  // Lines h apart in the world are h · px_per_metre apart in the drawing.
+  const double spacing_px = spacing * canvas.px_per_metre() / canvas.unit();
+  const double min_stride = std::max(1.0, std::ceil(kMinLevelSpacingPx / spacing_px));
+  const LevelSelection phi_levels = SelectLevels(phi, min_stride);
+  const LevelSelection psi_levels = SelectLevels(psi, min_stride);
+  canvas.Polylines(TopViewLevelLines(surface, psi, psi_levels), kPsiLine);
+  canvas.Polylines(TopViewLevelLines(surface, phi, phi_levels), kPhiLine);
+
+  DrawOutlineScaleAndNorth(surface, &canvas);
+  canvas.Legend(
+      {{kPhiLine.colour.Hex(),
+        LevelLegendLabel("φ = i·h", spacing, phi_levels.stride, "aligned with the guidance")},
+       {kPsiLine.colour.Hex(),
+        LevelLegendLabel("ψ = j·h", spacing, psi_levels.stride, "conjugate to φ")},
+       {kFaintStreamline.colour.Hex(), "integral curves of the guidance field"},
+       {hatch, "alignment not enforced (weight < 0.5)"}});
   return canvas.Write(path);
 }
 

@@ -1,6 +1,7 @@
 // Figure compositions for the pipeline stages, drawn as self-contained SVG top views
 // (SvgCanvas): the membrane displacement v_z (paper Fig. 3) and the guidance field with
-// its integral curves and the regions where alignment is not enforced (paper Fig. 6).
+// its integral curves and the regions where alignment is not enforced (paper Fig. 6), and
+// the level lines of the layout's two functions φ, ψ over the guidance (paper Figs. 7, 12).
 //
 // Size: up to FigureOptions::max_face_polygons faces every face is one <path> element
 // (~65 bytes); above, faces are too small to see one by one anyway (200k faces on a
@@ -8,7 +9,10 @@
 // of grid_cell_px squares in the top view, quantised to 64 colour levels, and runs of
 // equal colour along a row are merged into one box. Regions (the low-weight faces) are
 // drawn as their merged outline, streamlines at a density set in px. A 1M-triangle input
-// thus gives a file of a few MB, independent of the face count.
+// thus gives a file of a few MB, independent of the face count. Level lines are one path
+// per family with one subpath per chained line (geometry/level_lines.h), points closer than
+// 0.6 px dropped, and at most one line per few px: their size depends on the drawing and
+// the spacing h, not on the face count.
 #pragma once
 
 #include <string>
@@ -45,6 +49,23 @@ Status WriteDisplacementFigure(const SurfaceModel& surface, const std::vector<do
 Status WriteGuidanceFigure(const SurfaceModel& surface,
                            const std::vector<Eigen::Vector3d>& direction,
                            const std::vector<double>& magnitude, const std::string& magnitude_label,
+                           const std::vector<double>& weight, const std::string& title,
+                           const std::string& path, const FigureOptions& options = {});
+
+// Paper Figs. 7 and 12: top view on white; faces with weight < 0.5 (alignment not
+// enforced) hatched in muted brown as in the guidance figure; evenly spaced integral curves
+// of `direction` faint grey in the background; the level lines φ = i·h (black) and ψ = j·h
+// (blue) for every integer i, j in range, on top; boundary outline; legend (φ lines, ψ
+// lines, guidance, unaligned region); scale bar; north arrow; title. φ and ψ follow the
+// levelset stage's convention |∇φ| ≈ |∇ψ| ≈ 1/h, so the line φ = i·h (metres) is the level
+// φ = i of the stored values. If the lines would come closer than a few px (h tiny for the
+// drawing, or a diverged function with a huge range), only every k-th is drawn and the
+// legend says so. InvalidInput if φ or ψ does not have one finite value per vertex,
+// `direction` one vector per face, `weight` one finite value per face, or spacing is not a
+// positive number.
+Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double>& phi,
+                           const std::vector<double>& psi, double spacing,
+                           const std::vector<Eigen::Vector3d>& direction,
                            const std::vector<double>& weight, const std::string& title,
                            const std::string& path, const FigureOptions& options = {});
 

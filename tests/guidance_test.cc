@@ -19,16 +19,7 @@ namespace pqlayout {
 namespace {
 
 TriMesh Generate(const std::string& name, double width, double depth, double rise, double edge) {
-  GeneratorParams p;
-  p.name = name;
-  p.width = width;
-  p.depth = depth;
-  p.rise = rise;
-  p.edge_length = edge;
-  TriMesh mesh;
-  const Status s = GenerateSurface(p, &mesh);
-  EXPECT_TRUE(s.ok()) << s.message();
-  return mesh;
+  return testing::GeneratedMesh(name, width, depth, rise, edge);
 }
 
 double AngleBetweenLinesDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {

@@ -20,15 +20,7 @@ namespace {
 constexpr double kQ = 1350.0, kLambda = 2.0e4;
 
 SurfaceModel Generate(const std::string& name, double width, double depth, double edge) {
-  GeneratorParams p;
-  p.name = name;
-  p.width = width;
-  p.depth = depth;
-  p.edge_length = edge;
-  TriMesh mesh;
-  const Status s = GenerateSurface(p, &mesh);
-  EXPECT_TRUE(s.ok()) << s.message();
-  return SurfaceModel(std::move(mesh));
+  return SurfaceModel(testing::GeneratedMesh(name, width, depth, 5.0, edge));
 }
 
 VertexConditions AllBoundary(const SurfaceModel& s, BoundaryCondition c) {

@@ -11,6 +11,7 @@
 
 #include "geometry/mesh.h"
 #include "geometry/mesh_io.h"
+#include "geometry/surface_generators.h"
 
 namespace pqlayout::testing {
 
@@ -52,6 +53,20 @@ inline PolygonSoup FlatGridSoup(int n) {
 inline TriMesh ToMesh(const PolygonSoup& soup) {
   TriMesh mesh;
   EXPECT_TRUE(BuildTriMesh(soup, &mesh, nullptr).ok());
+  return mesh;
+}
+
+// A built-in surface (see GeneratorParams for the meaning of width, depth and rise).
+inline TriMesh GeneratedMesh(const std::string& name, double width, double depth, double rise, double edge) {
+  GeneratorParams p;
+  p.name = name;
+  p.width = width;
+  p.depth = depth;
+  p.rise = rise;
+  p.edge_length = edge;
+  TriMesh mesh;
+  const Status s = GenerateSurface(p, &mesh);
+  EXPECT_TRUE(s.ok()) << s.message();
   return mesh;
 }
 
