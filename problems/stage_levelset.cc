@@ -9,6 +9,7 @@
 #include "geometry/differential_operators.h"
 #include "geometry/field_writers.h"
 #include "geometry/principal_directions.h"
+#include "problems/figures.h"
 #include "problems/levelset.h"
 #include "problems/residuals/alignment_residual.h"
 #include "problems/residuals/conjugacy_residual.h"
@@ -480,6 +481,10 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
             << "° where weight > 0.5), spacing CV φ " << m.spacing_cv_phi << " ψ " << m.spacing_cv_psi
             << ", conjugacy " << m.conjugacy_rms << ", min crossing " << m.min_crossing_angle_deg << "°, "
             << m.foldovers << " fold-overs";
+  PQ_RETURN_IF_ERROR(WriteLevelSetFigure(surface, solution.phi, solution.psi, state->config.layout.spacing,
+                                         state->guidance.direction, state->guidance.weight,
+                                         "Level sets: φ (black) aligned with the guidance, ψ (blue) conjugate",
+                                         out->Path("figures/levelsets.svg")));
   return Status::Ok();
 }
 

@@ -1,6 +1,8 @@
-// Evenly spaced streamlines (straight, radial and sign-flipped line fields), the SVG canvas
-// helpers (colour maps, nice scale-bar lengths and ticks) and the figure compositions
-// (structure, labels, grid resampling above the face cap, size of a 1M-triangle figure).
+// Evenly spaced streamlines (straight, radial and sign-flipped line fields), level lines of
+// P1 functions (straight lines on a grid, ties at vertices, ridges and valleys, closed loops
+// on a disk), the SVG canvas helpers (colour maps, nice scale-bar lengths and ticks) and the
+// figure compositions (structure, labels, grid resampling above the face cap, size of a
+// 1M-triangle figure, the level-set figure of the Great Court).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +14,7 @@
 #include <random>
 #include <sstream>
 
+#include "geometry/level_lines.h"
 #include "geometry/streamlines.h"
 #include "geometry/surface_generators.h"
 #include "geometry/svg_canvas.h"
@@ -42,6 +45,16 @@ int Count(const std::string& text, const std::string& what) {
   int n = 0;
   for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
   return n;
+}
+
+double Cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// The d="..." data of the first <path> drawn with this stroke colour, "" if none.
+std::string StrokedPathData(const std::string& svg, const std::string& colour) {
+  const size_t at = svg.find("<path fill=\"none\" stroke=\"" + colour + "\"");
+  if (at == std::string::npos) return "";
+  const size_t begin = svg.find(" d=\"", at) + 4;
+  return svg.substr(begin, svg.find('"', begin) - begin);
 }
 
 // Smallest distance between samples of two different lines.
@@ -142,6 +155,148 @@ TEST(Streamlines, VerticalFacesAndSizeMismatchGiveNoLines) {
                   .empty());
   EXPECT_TRUE(
       EvenlySpacedStreamlines(wall, std::vector<Vector3d>(3, Vector3d::UnitY()), options).empty());
+}
+
+using Lines3 = std::vector<std::vector<Vector3d>>;
+
+std::vector<double> VertexValues(const SurfaceModel& s, double (*u)(const Vector3d&)) {
+  std::vector<double> values(s.num_vertices());
+  for (int v = 0; v < s.num_vertices(); ++v) values[v] = u(s.position(v));
+  return values;
+}
+
+struct GridLevels {
+  int n;     // side of the square, in unit cells
+  double h;  // level spacing, divides n
+};
+
+class LevelLinesOnFlatSquare : public ::testing::TestWithParam<GridLevels> {};
+
+// φ = x/h, ψ = y/h: the level lines φ = i, ψ = j are the straight lines x = i·h, y = j·h
+// across the square, running along n × ∇u (n = +z): φ's towards +y, ψ's towards -x.
+TEST_P(LevelLinesOnFlatSquare, AreTheStraightLinesEveryH) {
+  const auto [n, h] = GetParam();
+  const SurfaceModel square(testing::ToMesh(testing::FlatGridSoup(n)));
+  std::vector<double> phi(square.num_vertices()), psi(square.num_vertices());
+  for (int v = 0; v < square.num_vertices(); ++v) {
+    phi[v] = square.position(v).x() / h;
+    psi[v] = square.position(v).y() / h;
+  }
+  const int levels = static_cast<int>(std::lround(n / h));
+  for (int i = 1; i < levels; ++i)
+    for (const int axis : {0, 1}) {
+      const Lines3 lines = LevelLines(square, axis == 0 ? phi : psi, i);
+      ASSERT_EQ(lines.size(), 1u) << "axis " << axis << " level " << i;
+      const auto& line = lines.front();
+      ASSERT_GE(line.size(), static_cast<size_t>(n + 1));
+      double lo = n, hi = 0.0;
+      for (const Vector3d& p : line) {
+        EXPECT_NEAR(p[axis], i * h, 1e-9);
+        lo = std::min(lo, p[1 - axis]);
+        hi = std::max(hi, p[1 - axis]);
+      }
+      EXPECT_NEAR(lo, 0.0, 1e-9);  // spans the square
+      EXPECT_NEAR(hi, n, 1e-9);
+      // φ along z × x = +y, ψ along z × y = -x.
+      const Vector3d run = line.back() - line.front();
+      EXPECT_NEAR(axis == 0 ? run.y() : -run.x(), n, 1e-9);
+      for (size_t k = 1; k < line.size(); ++k)  // no back-tracking, no doubled segment
+        EXPECT_GT(axis == 0 ? line[k].y() - line[k - 1].y() : line[k - 1].x() - line[k].x(),
+                  -1e-12);
+    }
+  // Ties count as above: the level at the minimum (x = 0) has no line, the one at the
+  // maximum (x = n) runs along the boundary.
+  EXPECT_TRUE(LevelLines(square, phi, 0.0).empty());
+  const Lines3 at_max = LevelLines(square, phi, levels);
+  ASSERT_EQ(at_max.size(), 1u);
+  for (const Vector3d& p : at_max.front()) EXPECT_NEAR(p.x(), n, 1e-9);
+  EXPECT_TRUE(LevelLines(square, phi, levels + 1).empty());
+  EXPECT_TRUE(LevelLines(square, phi, -1.0).empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(VertexAndEdgeCrossings, LevelLinesOnFlatSquare,
+                         ::testing::Values(GridLevels{12, 3.0},    // levels through vertices
+                                           GridLevels{10, 2.5},    // alternately inside edges
+                                           GridLevels{7, 7.0 / 3.0}));  // never at a vertex
+
+// Levels passing exactly through vertices, along mesh edges with the function rising across
+// (one face on each side crossed), along a ridge (both faces below: the same edge twice)
+// and in a valley (nothing below): one line, one line, one line, none.
+TEST(LevelLines, LevelsThroughVerticesAndAlongEdgesGiveOneLine) {
+  const int n = 8;
+  const SurfaceModel square(testing::ToMesh(testing::FlatGridSoup(n)));
+  const auto expect_one_line = [&](const std::vector<double>& u, double c, const Vector3d& from,
+                                   const Vector3d& to, size_t points) {
+    const Lines3 lines = LevelLines(square, u, c);
+    ASSERT_EQ(lines.size(), 1u) << "level " << c;
+    const auto& line = lines.front();
+    EXPECT_EQ(line.size(), points) << "level " << c;
+    const bool forward = (line.front() - from).norm() < 1e-9;
+    EXPECT_TRUE(forward || (line.front() - to).norm() < 1e-9) << line.front().transpose();
+    EXPECT_LT((line.back() - (forward ? to : from)).norm(), 1e-9) << line.back().transpose();
+    for (const Vector3d& p : line)  // on the straight line from → to
+      EXPECT_NEAR((p - from).cross(to - from).norm(), 0.0, 1e-9);
+  };
+  // x + y = 5: through the vertices (i, 5 - i) and the midpoints of the cells' diagonals.
+  const auto sum = VertexValues(square, [](const Vector3d& p) { return p.x() + p.y(); });
+  expect_one_line(sum, 5.0, {0, 5, 0}, {5, 0, 0}, 11);
+  // x − y = 0 along the diagonal edges of the cells.
+  const auto difference = VertexValues(square, [](const Vector3d& p) { return p.x() - p.y(); });
+  expect_one_line(difference, 0.0, {0, 0, 0}, {n, n, 0}, n + 1);
+  // −|x − y| (ridge at 0): kept once; |x − y| (valley at 0): nothing is below.
+  const auto ridge =
+      VertexValues(square, [](const Vector3d& p) { return -std::abs(p.x() - p.y()); });
+  expect_one_line(ridge, 0.0, {0, 0, 0}, {n, n, 0}, n + 1);
+  const auto valley =
+      VertexValues(square, [](const Vector3d& p) { return std::abs(p.x() - p.y()); });
+  EXPECT_TRUE(LevelLines(square, valley, 0.0).empty());
+  // A single vertex at the level (a peak exactly at c) gives no line, nor does bad input.
+  std::vector<double> peak(square.num_vertices(), 0.0);
+  peak[4 * (n + 1) + 4] = 1.0;
+  EXPECT_TRUE(LevelLines(square, peak, 1.0).empty());
+  EXPECT_TRUE(LevelLines(square, std::vector<double>(3, 0.0), 0.0).empty());
+  EXPECT_TRUE(LevelLines(square, sum, std::nan("")).empty());
+}
+
+// φ = r/h on a disk: the level lines are closed loops (first point == last point) of radius
+// i·h up to the P1 interpolation error, counter-clockwise (along n × ∇r, n = +z).
+TEST(LevelLines, RadialFunctionOnDiskGivesClosedCircles) {
+  TriMesh mesh;
+  GeneratorParams disk;
+  disk.name = "disk";
+  disk.width = 20.0;
+  disk.edge_length = 0.5;
+  ASSERT_TRUE(GenerateSurface(disk, &mesh).ok());
+  const SurfaceModel surface(std::move(mesh));
+  const double h = 2.0;
+  double longest_edge = 0.0;
+  for (const auto e : surface.mesh().edges())
+    longest_edge = std::max(longest_edge, surface.mesh().calc_edge_length(e));
+  std::vector<double> phi(surface.num_vertices());
+  for (int v = 0; v < surface.num_vertices(); ++v)
+    phi[v] = surface.position(v).head<2>().norm() / h;
+  for (int i = 1; i <= 4; ++i) {
+    const double r = i * h;
+    const Lines3 lines = LevelLines(surface, phi, i);
+    ASSERT_EQ(lines.size(), 1u) << "r = " << r;
+    const auto& loop = lines.front();
+    ASSERT_GE(loop.size(), 8u);
+    EXPECT_EQ(loop.front(), loop.back());  // closed: the first point repeated exactly
+    // Linear interpolation of r along an edge of length ℓ overestimates it by at most
+    // ℓ² / (8 r_min): the crossing points lie on or just inside the circle.
+    const double tolerance = longest_edge * longest_edge / (8.0 * (r - longest_edge));
+    double twice_area = 0.0, length = 0.0;
+    for (size_t k = 0; k < loop.size(); ++k) {
+      const double radius = loop[k].head<2>().norm();
+      EXPECT_LE(radius, r + 1e-9);
+      EXPECT_GE(radius, r - tolerance);
+      if (k == 0) continue;
+      twice_area += Cross2(loop[k - 1].head<2>(), loop[k].head<2>());
+      length += (loop[k] - loop[k - 1]).norm();
+    }
+    EXPECT_NEAR(length, 2.0 * M_PI * r, 0.02 * r);
+    EXPECT_GT(twice_area, 0.0);  // counter-clockwise
+  }
 }
 
 TEST(SvgCanvas, ViridisEndpointsArePublishedValues) {
@@ -285,6 +440,123 @@ TEST_F(SmallMeshFigures, WrongSizesAreRefusedAndNothingIsWritten) {
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
+class LevelSetFigure : public ::testing::Test {
+ protected:
+  // 12 m square, h = 3 m, φ = x/h, ψ = y/h; the guidance along x, not enforced for x < 4.
+  LevelSetFigure() : square_(testing::ToMesh(testing::FlatGridSoup(12))) {
+    for (int v = 0; v < square_.num_vertices(); ++v) {
+      phi_.push_back(square_.position(v).x() / h_);
+      psi_.push_back(square_.position(v).y() / h_);
+    }
+    for (int f = 0; f < square_.num_faces(); ++f) {
+      direction_.push_back(Vector3d::UnitX());
+      weight_.push_back(Centroid(square_, f).x() < 4.0 ? 0.0 : 1.0);
+    }
+  }
+  const double h_ = 3.0;
+  SurfaceModel square_;
+  std::vector<double> phi_, psi_, weight_;
+  std::vector<Vector3d> direction_;
+};
+
+TEST_F(LevelSetFigure, HasOneSubpathPerLevelLineAndTheLegend) {
+  const std::string path = testing::TempDir() + "/levelsets.svg";
+  ASSERT_TRUE(WriteLevelSetFigure(square_, phi_, psi_, h_, direction_, weight_,
+                                  "Fig. 7: level sets", path)
+                  .ok());
+  const std::string svg = ReadText(path);
+  ExpectSvgDocument(svg);
+  EXPECT_NE(svg.find("Fig. 7: level sets"), std::string::npos);
+  EXPECT_NE(svg.find("level lines φ = i·h, h = 3 m (aligned with the guidance)"),
+            std::string::npos);
+  EXPECT_NE(svg.find("level lines ψ = j·h, h = 3 m (conjugate to φ)"), std::string::npos);
+  EXPECT_NE(svg.find("integral curves of the guidance field"), std::string::npos);
+  EXPECT_NE(svg.find("alignment not enforced (weight &lt; 0.5)"), std::string::npos);
+  EXPECT_NE(svg.find(">N</text>"), std::string::npos);  // north arrow
+  EXPECT_EQ(svg.find("one in"), std::string::npos);     // every level drawn
+  EXPECT_EQ(Count(svg, "<path color="), 0);             // no face colours
+  // Levels 1..4 of each: x = 3, 6, 9, 12 (the last along the boundary), one subpath each.
+  const std::string phi_lines = StrokedPathData(svg, "#000000");
+  const std::string psi_lines = StrokedPathData(svg, "#1f5fd6");
+  EXPECT_EQ(Count(phi_lines, "M"), 4) << phi_lines;
+  EXPECT_EQ(Count(psi_lines, "M"), 4) << psi_lines;
+  EXPECT_EQ(Count(svg, "url(#"), 2);  // the hatched region and its legend swatch
+}
+
+TEST_F(LevelSetFigure, DenseLevelsAreThinnedAndSaidSo) {
+  const double h = 0.01;  // 1200 levels across a ~800 px plot
+  std::vector<double> phi(square_.num_vertices()), psi(square_.num_vertices());
+  for (int v = 0; v < square_.num_vertices(); ++v) {
+    phi[v] = square_.position(v).x() / h;
+    psi[v] = square_.position(v).y() / h;
+  }
+  const std::string path = testing::TempDir() + "/dense.svg";
+  ASSERT_TRUE(
+      WriteLevelSetFigure(square_, phi, psi, h, direction_, weight_, "dense", path).ok());
+  const std::string svg = ReadText(path);
+  EXPECT_NE(svg.find(", one in "), std::string::npos);
+  const int drawn = Count(StrokedPathData(svg, "#000000"), "M");
+  EXPECT_GE(drawn, 100);
+  EXPECT_LE(drawn, 300);  // at least kMinLevelSpacingPx = 4 px apart
+}
+
+TEST_F(LevelSetFigure, WrongInputIsRefusedAndNothingIsWritten) {
+  const std::string path = testing::TempDir() + "/bad.svg";
+  const Status short_psi = WriteLevelSetFigure(square_, phi_, std::vector<double>(5, 0.0), h_,
+                                               direction_, weight_, "bad", path);
+  EXPECT_EQ(short_psi.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(short_psi.message().find("psi has 5 values"), std::string::npos)
+      << short_psi.message();
+  std::vector<double> phi = phi_;
+  phi[3] = std::numeric_limits<double>::infinity();
+  const Status infinite =
+      WriteLevelSetFigure(square_, phi, psi_, h_, direction_, weight_, "bad", path);
+  EXPECT_NE(infinite.message().find("phi is not finite at vertex 3"), std::string::npos)
+      << infinite.message();
+  const Status no_spacing =
+      WriteLevelSetFigure(square_, phi_, psi_, 0.0, direction_, weight_, "bad", path);
+  EXPECT_EQ(no_spacing.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(no_spacing.message().find("spacing"), std::string::npos) << no_spacing.message();
+  EXPECT_EQ(WriteLevelSetFigure(square_, phi_, psi_, h_, {}, weight_, "bad", path).code(),
+            StatusCode::kInvalidInput);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+// The Great Court at the example's resolution (~12k faces, h = 3 m), with φ, ψ standing in
+// for a solution: lines around the Reading Room ring and across the rectangle.
+TEST(LargeMeshFigures, GreatCourtLevelSetFigureIsSmall) {
+  TriMesh mesh;
+  GeneratorParams court;
+  court.name = "great_court";
+  court.edge_length = 1.5;
+  ASSERT_TRUE(GenerateSurface(court, &mesh).ok());
+  const SurfaceModel surface(std::move(mesh));
+  const double h = 3.0;
+  std::vector<double> phi(surface.num_vertices()), psi(surface.num_vertices());
+  for (int v = 0; v < surface.num_vertices(); ++v) {
+    const Vector3d p = surface.position(v);
+    phi[v] = p.head<2>().norm() / h;
+    psi[v] = (p.x() + 0.3 * p.y()) / h;
+  }
+  std::vector<Vector3d> direction(surface.num_faces());
+  std::vector<double> weight(surface.num_faces());
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const Vector2d c = Centroid(surface, f);
+    direction[f] << -c.y(), c.x(), 0.0;
+    weight[f] = c.norm() > 35.0 ? 0.0 : 1.0;
+  }
+  const std::string path = testing::TempDir() + "/levelsets.svg";
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_TRUE(WriteLevelSetFigure(surface, phi, psi, h, direction, weight, "Great Court", path)
+                  .ok());
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto size = std::filesystem::file_size(path);
+  EXPECT_LT(size, 3u << 20);
+  std::cout << "Great Court (" << surface.num_faces() << " faces) level-set figure: " << size
+            << " bytes in " << seconds << " s\n";
+}
+
 TEST(LargeMeshFigures, OneMillionTrianglesFitInTwentyMegabytes) {
   const int n = 708;  // 2·708² = 1,002,528 triangles
   const SurfaceModel surface(testing::ToMesh(testing::GridSoup(n, [n](double x, double y) {
@@ -309,14 +581,28 @@ TEST(LargeMeshFigures, OneMillionTrianglesFitInTwentyMegabytes) {
                                   "guidance, 1M triangles", dir + "/g.svg")
                   .ok());
   const auto end = std::chrono::steady_clock::now();
+  const double h = 20.0;  // ~35 lines per family, as many as 3 m on the Great Court
+  std::vector<double> phi(surface.num_vertices()), psi(surface.num_vertices());
+  for (int v = 0; v < surface.num_vertices(); ++v) {
+    const Vector2d c = surface.position(v).head<2>() - Vector2d(0.5 * n, 0.5 * n);
+    phi[v] = c.norm() / h;
+    psi[v] = std::atan2(c.y(), c.x()) * 0.25 * n / h;
+  }
+  ASSERT_TRUE(WriteLevelSetFigure(surface, phi, psi, h, direction, weight,
+                                  "level sets, 1M triangles", dir + "/l.svg")
+                  .ok());
+  const auto level_end = std::chrono::steady_clock::now();
   const auto v_size = std::filesystem::file_size(dir + "/v.svg");
   const auto g_size = std::filesystem::file_size(dir + "/g.svg");
+  const auto l_size = std::filesystem::file_size(dir + "/l.svg");
   EXPECT_LT(v_size, 20u << 20);
   EXPECT_LT(g_size, 20u << 20);
+  EXPECT_LT(l_size, 20u << 20);
   std::cout << "1M triangles: displacement figure " << v_size << " bytes in "
             << std::chrono::duration<double>(middle - start).count() << " s, guidance figure "
             << g_size << " bytes in " << std::chrono::duration<double>(end - middle).count()
-            << " s\n";
+            << " s, level-set figure " << l_size << " bytes in "
+            << std::chrono::duration<double>(level_end - end).count() << " s\n";
 }
 
 }  // namespace
