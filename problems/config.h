@@ -83,7 +83,7 @@ struct LevelsetWeights {
 struct LevelsetOptions {
   LevelsetWeights weights;
   double min_angle = 30.0;  // minimum crossing angle of the two families, degrees
-  int max_iterations = 400;   // Ceres iterations of the φ solve and of the ψ solve
+  int max_iterations = 50;    // Ceres iterations of the φ solve and of the ψ solve
   int joint_iterations = 300; // Ceres iterations of the final joint solve (0: none)
 };
 

@@ -279,13 +279,14 @@ Status Solve(const std::string& name, int max_iterations, ceres::Problem* proble
   options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
   options.num_threads = 2;
   options.max_num_iterations = max_iterations;
-  options.function_tolerance = 1e-9;
+  options.function_tolerance = 1e-6;
   options.logging_type = ceres::SILENT;
   ProgressLog progress(name);
   options.callbacks.push_back(&progress);
   ceres::Solver::Summary result;
   ceres::Solve(options, problem, &result);
   *summary = SummaryJson(result);
+  VLOG(1) << "levelset: " << name << ":\n" << result.FullReport();
   if (!result.IsSolutionUsable()) return Status::Internal("levelset: Ceres failed on " + name + ": " + result.message);
   LOG(INFO) << "levelset: " << name << ": " << result.iterations.size() - 1 << " iterations, cost "
             << result.initial_cost << " → " << result.final_cost << " ("

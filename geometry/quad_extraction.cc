@@ -1,0 +1,595 @@
+#include "geometry/quad_extraction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <set>
+#include <string>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+namespace pqlayout {
+namespace {
+
+enum Family { kPhi = 0, kPsi = 1 };
+
+// The curve a piece edge lies on: a φ line (level id), a ψ line, a reference edge (id) or,
+// after normalisation of region loops, the reference boundary.
+struct Carrier {
+  enum Kind { kPhiLine = 0, kPsiLine = 1, kReferenceEdge = 2, kBoundary = 3 };
+  int kind = kReferenceEdge;
+  int id = -1;
+  bool operator==(const Carrier& o) const { return kind == o.kind && id == o.id; }
+  bool operator!=(const Carrier& o) const { return !(*this == o); }
+};
+
+// A point of the cut: a reference vertex, a point inside a reference edge or inside a face.
+struct CutPoint {
+  int vertex = -1;                      // reference vertex, or
+  int edge = -1, from = -1, to = -1;    // inside edge (from, to): from + t (to − from), or
+  double t = 0.0;
+  int face = -1;                        // inside a face (the one it was made in)
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();  // in that face (origin)
+  int origin_face = -1;
+  double value[2] = {0.0, 0.0};         // φ, ψ, computed once per key
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  bool on_boundary = false;
+  bool corner = false;
+};
+
+struct Corner {
+  int point;
+  Carrier carrier;  // of the edge to the next corner
+};
+using Polygon = std::vector<Corner>;
+
+struct Piece {
+  int label[2];  // (⌊φ⌋, ⌊ψ⌋)
+  Polygon corners;
+};
+
+// Values within this distance of an integer snap to it (made once per key, so consistent).
+constexpr double kSnap = 1e-10;
+double Snap(double x) {
+  const double r = std::round(x);
+  return std::abs(x - r) <= kSnap * std::max(1.0, std::abs(x)) ? r : x;
+}
+
+class Cutter {
+ public:
+  Cutter(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
+         const std::vector<int>& corners)
+      : surface_(surface), values_{&phi, &psi}, vertex_point_(surface.num_vertices(), -1) {
+    is_corner_.assign(surface.num_vertices(), 0);
+    for (const int v : corners) is_corner_[v] = 1;
+    const TriMesh& mesh = surface.mesh();
+    face_edges_.resize(surface.num_faces());
+    for (int f = 0; f < surface.num_faces(); ++f) {
+      const auto ids = surface.face_vertices(f);
+      for (int k = 0; k < 3; ++k)
+        face_edges_[f][k] =
+            mesh.edge_handle(mesh.find_halfedge(VertexHandle(ids[k]), VertexHandle(ids[(k + 1) % 3]))).idx();
+    }
+  }
+
+  const std::vector<CutPoint>& points() const { return points_; }
+
+  // All pieces of face f.
+  void CutFace(int f, std::vector<Piece>* pieces) {
+    const auto ids = surface_.face_vertices(f);
+    Polygon triangle;
+    for (int k = 0; k < 3; ++k)
+      triangle.push_back({VertexPoint(ids[k], f), {Carrier::kReferenceEdge, face_edges_[f][k]}});
+    for (const auto& [i, slab_phi] : Slabs(f, triangle, kPhi)) {
+      for (const auto& [j, slab] : Slabs(f, slab_phi, kPsi)) pieces->push_back({{i, j}, slab});
+    }
+  }
+
+  // The reference edge both points lie on, or -1.
+  int CommonEdge(int p, int q) const {
+    const CutPoint& a = points_[p];
+    const CutPoint& b = points_[q];
+    if (a.face >= 0 || b.face >= 0) return -1;
+    if (a.edge >= 0 && b.edge >= 0) return a.edge == b.edge ? a.edge : -1;
+    if (a.edge >= 0) return (b.vertex == a.from || b.vertex == a.to) ? a.edge : -1;
+    if (b.edge >= 0) return (a.vertex == b.from || a.vertex == b.to) ? b.edge : -1;
+    const auto h = surface_.mesh().find_halfedge(VertexHandle(a.vertex), VertexHandle(b.vertex));
+    return h.is_valid() ? surface_.mesh().edge_handle(h).idx() : -1;
+  }
+
+ private:
+  double Value(int v, Family family) const { return (*values_[family])[v]; }
+
+  int VertexPoint(int v, int f) {
+    if (vertex_point_[v] >= 0) return vertex_point_[v];
+    CutPoint p;
+    p.vertex = v;
+    p.value[kPhi] = Value(v, kPhi);
+    p.value[kPsi] = Value(v, kPsi);
+    p.position = surface_.position(v);
+    p.origin_face = f;
+    const auto ids = surface_.face_vertices(f);
+    for (int k = 0; k < 3; ++k) p.barycentric[k] = ids[k] == v ? 1.0 : 0.0;
+    p.on_boundary = surface_.is_boundary(v);
+    p.corner = is_corner_[v];
+    vertex_point_[v] = static_cast<int>(points_.size());
+    points_.push_back(p);
+    return vertex_point_[v];
+  }
+
+  // Bit k set: the point lies on local edge k (vertices k, k+1) of face f.
+  int EdgeMask(int point, int f) const {
+    const CutPoint& p = points_[point];
+    if (p.face >= 0) return 0;
+    const auto ids = surface_.face_vertices(f);
+    int mask = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (p.vertex >= 0 && (ids[k] == p.vertex || ids[(k + 1) % 3] == p.vertex)) mask |= 1 << k;
+      if (p.edge >= 0 && face_edges_[f][k] == p.edge) mask |= 1 << k;
+    }
+    return mask;
+  }
+
+  Eigen::Vector3d LocalBarycentric(int point, int f) const {
+    const CutPoint& p = points_[point];
+    if (p.face >= 0) return p.barycentric;  // face points are only used in their face
+    const auto ids = surface_.face_vertices(f);
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      if (ids[k] == p.vertex) b[k] = 1.0;
+      if (ids[k] == p.from) b[k] = 1.0 - p.t;
+      if (ids[k] == p.to) b[k] = p.t;
+    }
+    return b;
+  }
+
+  // Where level `level` of `family` crosses the segment p–q of face f (one end below, the
+  // other not); `carrier` is the curve the segment lies on.
+  int Crossing(int f, int p, int q, Family family, int level, const Carrier& carrier) {
+    int lower = p, upper = q;
+    if (!(points_[lower].value[family] < level)) std::swap(lower, upper);
+    if (points_[upper].value[family] == level) return upper;  // tie: the upper end itself
+    const int common = EdgeMask(p, f) & EdgeMask(q, f);
+    if (common) {
+      const int k = common & 1 ? 0 : (common & 2 ? 1 : 2);
+      return EdgePoint(f, k, family, level);
+    }
+    const Family other = family == kPhi ? kPsi : kPhi;
+    if (carrier.kind != static_cast<int>(other)) return upper;  // cannot happen for valid input
+    const int i = family == kPhi ? level : carrier.id, j = family == kPhi ? carrier.id : level;
+    const auto key = std::make_tuple(2, f, i, j);
+    const auto found = point_of_key_.find(key);
+    if (found != point_of_key_.end()) return found->second;
+    const double t = (level - points_[lower].value[family]) /
+                     (points_[upper].value[family] - points_[lower].value[family]);
+    CutPoint x;
+    x.face = x.origin_face = f;
+    const Eigen::Vector3d bl = LocalBarycentric(lower, f), bu = LocalBarycentric(upper, f);
+    x.barycentric = bl + t * (bu - bl);
+    x.value[kPhi] = i;
+    x.value[kPsi] = j;
+    x.position = Position(f, x.barycentric);
+    return Add(key, x);
+  }
+
+  // The crossing of `level` with local edge k of face f (strictly inside the edge).
+  int EdgePoint(int f, int k, Family family, int level) {
+    const int e = face_edges_[f][k];
+    const auto key = std::make_tuple(1, e, static_cast<int>(family), level);
+    const auto found = point_of_key_.find(key);
+    if (found != point_of_key_.end()) return found->second;
+    const auto ids = surface_.face_vertices(f);
+    int a = ids[k], b = ids[(k + 1) % 3];
+    if (!(Value(a, family) < level)) std::swap(a, b);  // from the lower to the upper end
+    CutPoint x;
+    x.edge = e;
+    x.from = a;
+    x.to = b;
+    x.t = (level - Value(a, family)) / (Value(b, family) - Value(a, family));
+    const Family other = family == kPhi ? kPsi : kPhi;
+    x.value[family] = level;
+    x.value[other] = Snap(Value(a, other) + x.t * (Value(b, other) - Value(a, other)));
+    x.position = surface_.position(a) + x.t * (surface_.position(b) - surface_.position(a));
+    x.origin_face = f;
+    x.barycentric[k] = ids[k] == a ? 1.0 - x.t : x.t;
+    x.barycentric[(k + 1) % 3] = ids[k] == a ? x.t : 1.0 - x.t;
+    x.on_boundary = surface_.mesh().is_boundary(EdgeHandle(e));
+    return Add(key, x);
+  }
+
+  int Add(const std::tuple<int, int, int, int>& key, const CutPoint& point) {
+    const int id = static_cast<int>(points_.size());
+    points_.push_back(point);
+    point_of_key_.emplace(key, id);
+    return id;
+  }
+
+  Eigen::Vector3d Position(int f, const Eigen::Vector3d& b) const {
+    const auto ids = surface_.face_vertices(f);
+    return b[0] * surface_.position(ids[0]) + b[1] * surface_.position(ids[1]) + b[2] * surface_.position(ids[2]);
+  }
+
+  // Sutherland–Hodgman: the part of `polygon` with value ≥ level (keep_above) or < level.
+  Polygon Clip(int f, const Polygon& polygon, Family family, int level, bool keep_above) {
+    const auto inside = [&](int point) { return (points_[point].value[family] < level) != keep_above; };
+    const Carrier cut{static_cast<int>(family), level};
+    Polygon result;
+    const size_t n = polygon.size();
+    for (size_t k = 0; k < n; ++k) {
+      const Corner& p = polygon[k];
+      const Corner& q = polygon[(k + 1) % n];
+      const bool p_in = inside(p.point), q_in = inside(q.point);
+      if (p_in) {
+        result.push_back(p);
+        if (!q_in) result.push_back({Crossing(f, p.point, q.point, family, level, p.carrier), cut});
+      } else if (q_in) {
+        result.push_back({Crossing(f, p.point, q.point, family, level, p.carrier), p.carrier});
+      }
+    }
+    return WithoutRepeats(result);
+  }
+
+  // Consecutive equal points (a crossing exactly at a corner) kept once, with the carrier of
+  // the edge that leaves them.
+  static Polygon WithoutRepeats(const Polygon& polygon) {
+    Polygon result;
+    for (const Corner& c : polygon) {
+      if (!result.empty() && result.back().point == c.point) result.back() = c;
+      else result.push_back(c);
+    }
+    while (result.size() > 1 && result.back().point == result.front().point) {
+      result.pop_back();
+    }
+    return result;
+  }
+
+  // The non-degenerate pieces of `polygon` between consecutive integer levels of `family`.
+  std::vector<std::pair<int, Polygon>> Slabs(int f, const Polygon& polygon, Family family) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const Corner& c : polygon) {
+      lo = std::min(lo, points_[c.point].value[family]);
+      hi = std::max(hi, points_[c.point].value[family]);
+    }
+    std::vector<std::pair<int, Polygon>> slabs;
+    for (int level = static_cast<int>(std::floor(lo)); level <= static_cast<int>(std::floor(hi)); ++level) {
+      Polygon slab = Clip(f, Clip(f, polygon, family, level, true), family, level + 1, false);
+      if (slab.size() < 3) continue;
+      // All corners exactly on the lower level: a zero-area sliver (a ridge at the level).
+      const bool sliver = std::all_of(slab.begin(), slab.end(),
+                                      [&](const Corner& c) { return points_[c.point].value[family] == level; });
+      if (!sliver) slabs.emplace_back(level, std::move(slab));
+    }
+    return slabs;
+  }
+
+  const SurfaceModel& surface_;
+  const std::vector<double>* values_[2];
+  std::vector<char> is_corner_;
+  std::vector<std::array<int, 3>> face_edges_;
+  std::vector<int> vertex_point_;
+  std::map<std::tuple<int, int, int, int>, int> point_of_key_;
+  std::vector<CutPoint> points_;
+};
+
+// ---- Regions: pieces of one label joined across shared edges ------------------------------
+
+struct PieceEdge {
+  int piece, k;  // edge from corner k to k + 1 of piece
+};
+
+class Regions {
+ public:
+  Regions(const std::vector<Piece>& pieces) : pieces_(pieces), parent_(pieces.size()) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+    for (size_t p = 0; p < pieces.size(); ++p) {
+      const Polygon& c = pieces[p].corners;
+      for (size_t k = 0; k < c.size(); ++k)
+        edge_of_.emplace(Key(c[k].point, c[(k + 1) % c.size()].point), PieceEdge{int(p), int(k)});
+    }
+    for (size_t p = 0; p < pieces.size(); ++p) {
+      const Polygon& c = pieces[p].corners;
+      for (size_t k = 0; k < c.size(); ++k) {
+        const PieceEdge* twin = Twin({int(p), int(k)});
+        if (twin) Union(int(p), twin->piece);
+      }
+    }
+  }
+
+  int From(PieceEdge e) const { return pieces_[e.piece].corners[e.k].point; }
+  int To(PieceEdge e) const {
+    const Polygon& c = pieces_[e.piece].corners;
+    return c[(e.k + 1) % c.size()].point;
+  }
+  const Carrier& PieceCarrier(PieceEdge e) const { return pieces_[e.piece].corners[e.k].carrier; }
+
+  // The opposite edge in a piece of the same label, or null.
+  const PieceEdge* Twin(PieceEdge e) const {
+    const auto it = edge_of_.find(Key(To(e), From(e)));
+    if (it == edge_of_.end()) return nullptr;
+    const Piece& a = pieces_[e.piece];
+    const Piece& b = pieces_[it->second.piece];
+    if (a.label[0] != b.label[0] || a.label[1] != b.label[1]) return nullptr;
+    return &it->second;
+  }
+
+  // The region boundary edge after e: turn around To(e) through pieces of the same label.
+  PieceEdge NextOnBoundary(PieceEdge e) const {
+    PieceEdge next = Following(e);
+    for (size_t guard = 0; guard < pieces_.size(); ++guard) {
+      const PieceEdge* twin = Twin(next);
+      if (!twin) return next;
+      next = Following(*twin);
+    }
+    return next;
+  }
+
+  int Find(int p) {
+    while (parent_[p] != p) p = parent_[p] = parent_[parent_[p]];
+    return p;
+  }
+
+  // The boundary loops of every region (region = root piece).
+  std::map<int, std::vector<std::vector<PieceEdge>>> Loops() {
+    std::set<std::pair<int, int>> visited;
+    std::map<int, std::vector<std::vector<PieceEdge>>> loops;
+    for (size_t p = 0; p < pieces_.size(); ++p) {
+      for (size_t k = 0; k < pieces_[p].corners.size(); ++k) {
+        PieceEdge start{int(p), int(k)};
+        if (Twin(start) || visited.count({start.piece, start.k})) continue;
+        std::vector<PieceEdge> loop;
+        PieceEdge e = start;
+        do {
+          visited.insert({e.piece, e.k});
+          loop.push_back(e);
+          e = NextOnBoundary(e);
+        } while (!(e.piece == start.piece && e.k == start.k) && loop.size() <= 4 * edge_of_.size());
+        loops[Find(int(p))].push_back(std::move(loop));
+      }
+    }
+    return loops;
+  }
+
+ private:
+  static std::pair<int, int> Key(int a, int b) { return {a, b}; }
+  PieceEdge Following(PieceEdge e) const {
+    return {e.piece, int((e.k + 1) % pieces_[e.piece].corners.size())};
+  }
+  void Union(int a, int b) { parent_[Find(a)] = Find(b); }
+
+  const std::vector<Piece>& pieces_;
+  std::vector<int> parent_;
+  std::map<std::pair<int, int>, PieceEdge> edge_of_;
+};
+
+// ---- Short edges ---------------------------------------------------------------------------
+
+struct Polygons {
+  std::vector<Eigen::Vector3d> position;
+  std::vector<QuadMeshVertex> origin;
+  std::vector<std::vector<int>> faces;
+};
+
+bool CyclicallyAdjacent(const std::vector<int>& face, int u, int v) {
+  const size_t n = face.size();
+  for (size_t k = 0; k < n; ++k) {
+    const int a = face[k], b = face[(k + 1) % n];
+    if ((a == u && b == v) || (a == v && b == u)) return true;
+  }
+  return false;
+}
+
+// One round of collapses of edges shorter than min_length, on disjoint neighbourhoods.
+int CollapseRound(double min_length, Polygons* m) {
+  const int nv = static_cast<int>(m->position.size());
+  std::vector<std::vector<int>> faces_of(nv);
+  std::vector<std::set<int>> neighbours(nv);
+  std::map<std::pair<int, int>, int> edge_faces;
+  for (size_t f = 0; f < m->faces.size(); ++f) {
+    const auto& face = m->faces[f];
+    for (size_t k = 0; k < face.size(); ++k) {
+      const int a = face[k], b = face[(k + 1) % face.size()];
+      faces_of[a].push_back(int(f));
+      neighbours[a].insert(b);
+      neighbours[b].insert(a);
+      ++edge_faces[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::vector<char> topological_boundary(nv, 0);
+  for (const auto& [e, count] : edge_faces)
+    if (count == 1) topological_boundary[e.first] = topological_boundary[e.second] = 1;
+  std::vector<std::pair<double, std::pair<int, int>>> short_edges;
+  for (const auto& [e, count] : edge_faces) {
+    const double length = (m->position[e.first] - m->position[e.second]).norm();
+    if (length < min_length) short_edges.push_back({length, e});
+  }
+  std::sort(short_edges.begin(), short_edges.end());
+  std::vector<char> touched(m->faces.size(), 0);
+  std::vector<int> target(nv);
+  std::iota(target.begin(), target.end(), 0);
+  int collapsed = 0;
+  const auto rank = [&](int v) { return m->origin[v].corner ? 2 : (m->origin[v].on_boundary ? 1 : 0); };
+  for (const auto& [length, e] : short_edges) {
+    auto [u, v] = e;
+    bool free = true;
+    for (const int f : faces_of[u]) free &= !touched[f];
+    for (const int f : faces_of[v]) free &= !touched[f];
+    if (!free) continue;
+    if (rank(u) == 2 && rank(v) == 2) continue;
+    const bool boundary_edge = edge_faces[e] == 1;
+    if (topological_boundary[u] && topological_boundary[v] && !boundary_edge) continue;
+    if (rank(u) >= 1 && rank(v) >= 1 && !boundary_edge) continue;
+    // Link condition: common neighbours only through triangles on the edge.
+    std::set<int> allowed;
+    bool adjacent_everywhere = true;
+    for (const int f : faces_of[u]) {
+      const auto& face = m->faces[f];
+      if (std::find(face.begin(), face.end(), v) == face.end()) continue;
+      adjacent_everywhere &= CyclicallyAdjacent(face, u, v);
+      if (face.size() == 3)
+        for (const int w : face)
+          if (w != u && w != v) allowed.insert(w);
+    }
+    if (!adjacent_everywhere) continue;
+    bool link_ok = true;
+    for (const int w : neighbours[u])
+      if (w != v && neighbours[v].count(w) && !allowed.count(w)) link_ok = false;
+    if (!link_ok) continue;
+    if (rank(v) > rank(u)) std::swap(u, v);  // keep u
+    target[v] = u;
+    for (const int f : faces_of[u]) touched[f] = 1;
+    for (const int f : faces_of[v]) touched[f] = 1;
+    ++collapsed;
+  }
+  if (collapsed == 0) return 0;
+  std::vector<std::vector<int>> faces;
+  for (const auto& face : m->faces) {
+    std::vector<int> mapped;
+    for (const int v : face) {
+      const int w = target[v];
+      if (mapped.empty() || mapped.back() != w) mapped.push_back(w);
+    }
+    while (mapped.size() > 1 && mapped.back() == mapped.front()) mapped.pop_back();
+    if (mapped.size() >= 3) faces.push_back(std::move(mapped));
+  }
+  m->faces = std::move(faces);
+  return collapsed;
+}
+
+// Drops vertices no face uses.
+void Compact(Polygons* m) {
+  std::vector<int> index(m->position.size(), -1);
+  Polygons compact;
+  for (auto& face : m->faces)
+    for (int& v : face) {
+      if (index[v] < 0) {
+        index[v] = static_cast<int>(compact.position.size());
+        compact.position.push_back(m->position[v]);
+        compact.origin.push_back(m->origin[v]);
+      }
+      v = index[v];
+    }
+  compact.faces = std::move(m->faces);
+  *m = std::move(compact);
+}
+
+// The loop's output vertices (as loop positions): where the curve changes, and corners.
+std::vector<int> OutputCorners(const std::vector<int>& points, const std::vector<Carrier>& carriers,
+                               const std::vector<CutPoint>& cut) {
+  const size_t n = points.size();
+  std::vector<int> kept;
+  for (size_t k = 0; k < n; ++k) {
+    const Carrier& in = carriers[(k + n - 1) % n];
+    if (in != carriers[k] || cut[points[k]].corner) kept.push_back(int(k));
+  }
+  return kept;
+}
+
+// Loops with fewer than 3 output vertices (a lens cut off by one curve) get extra loop
+// points, boundary points first, each as far as possible from those already kept.
+std::vector<int> Padded(std::vector<int> kept, const std::vector<int>& points, const std::vector<Carrier>& carriers,
+                        const std::vector<CutPoint>& cut) {
+  const size_t n = points.size();
+  while (kept.size() < 3 && kept.size() < n) {
+    int best = -1;
+    double best_score = -1.0;
+    for (size_t k = 0; k < n; ++k) {
+      if (std::find(kept.begin(), kept.end(), int(k)) != kept.end()) continue;
+      double distance = kept.empty() ? 1.0 : INFINITY;
+      for (const int q : kept) distance = std::min(distance, (cut[points[k]].position - cut[points[q]].position).norm());
+      const bool boundary = carriers[k].kind == Carrier::kBoundary && carriers[(k + n - 1) % n].kind == Carrier::kBoundary;
+      const double score = distance + (boundary ? 1e9 : 0.0);
+      if (score > best_score) best_score = score, best = int(k);
+    }
+    kept.push_back(best);
+    std::sort(kept.begin(), kept.end());
+  }
+  return kept;
+}
+
+}  // namespace
+
+Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
+                       double corner_angle_deg, double min_edge_length, ExtractedMesh* out) {
+  const int nv = surface.num_vertices();
+  if (static_cast<int>(phi.size()) != nv || static_cast<int>(psi.size()) != nv)
+    return Status::InvalidInput("extract: φ and ψ need one value per reference vertex (" + std::to_string(nv) + ")");
+  for (int v = 0; v < nv; ++v)
+    if (!std::isfinite(phi[v]) || !std::isfinite(psi[v]) || std::abs(phi[v]) > 1e6 || std::abs(psi[v]) > 1e6)
+      return Status::InvalidInput("extract: φ or ψ is not finite (or absurdly large) at vertex " + std::to_string(v));
+
+  Cutter cutter(surface, phi, psi, surface.BoundaryCorners(corner_angle_deg * M_PI / 180.0));
+  std::vector<Piece> pieces;
+  for (int f = 0; f < surface.num_faces(); ++f) cutter.CutFace(f, &pieces);
+  const std::vector<CutPoint>& cut = cutter.points();
+
+  Regions regions(pieces);
+  const auto loops = regions.Loops();
+  *out = ExtractedMesh();
+  Polygons polygons;
+  std::vector<int> vertex_of_point(cut.size(), -1);
+  for (const auto& [region, region_loops] : loops) {
+    if (region_loops.size() != 1) {
+      ++out->stats.regions_with_holes;
+      continue;
+    }
+    // The loop's points and the curve each loop edge lies on (reference boundary edges as
+    // one curve; interior reference edges along a level line as that line).
+    std::vector<int> points;
+    std::vector<Carrier> carriers;
+    for (const PieceEdge& e : region_loops[0]) {
+      const int a = regions.From(e), b = regions.To(e);
+      Carrier c = regions.PieceCarrier(e);
+      const int edge = cutter.CommonEdge(a, b);
+      if (edge >= 0 && surface.mesh().is_boundary(EdgeHandle(edge))) {
+        c = {Carrier::kBoundary, 0};
+      } else if (c.kind == Carrier::kReferenceEdge) {
+        for (const int family : {kPhi, kPsi})
+          if (cut[a].value[family] == cut[b].value[family] && cut[a].value[family] == std::floor(cut[a].value[family]))
+            c = {family, static_cast<int>(cut[a].value[family])};
+      }
+      points.push_back(a);
+      carriers.push_back(c);
+    }
+    if (points.size() < 3) continue;
+    std::vector<int> kept = OutputCorners(points, carriers, cut);
+    if (kept.size() < 3) {
+      kept = Padded(kept, points, carriers, cut);
+      ++out->stats.padded_faces;
+    }
+    std::vector<int> face;
+    for (const int k : kept) {
+      const int p = points[k];
+      if (vertex_of_point[p] < 0) {
+        vertex_of_point[p] = static_cast<int>(polygons.position.size());
+        polygons.position.push_back(cut[p].position);
+        QuadMeshVertex origin;
+        origin.face = cut[p].origin_face;
+        origin.barycentric = cut[p].barycentric;
+        origin.on_boundary = cut[p].on_boundary;
+        origin.corner = cut[p].corner;
+        polygons.origin.push_back(origin);
+      }
+      face.push_back(vertex_of_point[p]);
+    }
+    polygons.faces.push_back(std::move(face));
+  }
+
+  if (min_edge_length > 0.0) {
+    while (const int collapsed = CollapseRound(min_edge_length, &polygons)) out->stats.collapsed_edges += collapsed;
+  }
+  Compact(&polygons);
+
+  PolyMesh& mesh = out->mesh;
+  for (const auto& p : polygons.position) mesh.add_vertex(ToOpenMesh(p));
+  out->origin = polygons.origin;
+  for (const auto& face : polygons.faces) {
+    std::vector<VertexHandle> handles;
+    for (const int v : face) handles.push_back(VertexHandle(v));
+    if (!mesh.add_face(handles).is_valid()) ++out->stats.rejected_faces;
+  }
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,64 @@
+// Quad-dominant mesh from two families of level lines (paper §3.1 step 3, SPEC stage 5
+// `extract`): the curves φ = i and ψ = j (i, j integers; with |∇φ| ≈ 1/h they lie h metres
+// apart) are intersected with each other and with the boundary, and neighbouring
+// intersection points are connected along the curves and along the boundary.
+//
+// Method. Every reference triangle is cut along all integer levels of φ, then of ψ
+// (Sutherland–Hodgman clipping; φ and ψ are linear on a triangle, so the pieces are convex
+// polygons), each piece labelled by its cell (⌊φ⌋, ⌊ψ⌋) by construction. A face of the
+// output is a connected set of pieces with the same label (joined across shared piece edges);
+// its boundary loop keeps only the output vertices: points where the loop passes from one
+// curve to another (a φ line to a ψ line, a level line to the reference boundary) and
+// boundary corners. Cut points are keyed symbolically, never by position: a reference vertex,
+// (reference edge, family, level) or (face, i, j); every decision about a shared point is
+// made from values computed once per key, so neighbouring triangles agree. Ties follow
+// geometry/level_lines.h: a value exactly equal to a level counts as above it.
+// Afterwards edges shorter than min_edge × h are collapsed (boundary corners stay, boundary
+// vertices stay on the boundary, the link condition keeps the mesh manifold); a quad that
+// loses a vertex becomes a triangle. Faces keep the reference orientation.
+//
+// Where a region of one label is not a disc (it surrounds a hole of the surface or an
+// island of another cell) it cannot be one polygon: it is left out and counted.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/mesh.h"
+#include "geometry/status.h"
+#include "geometry/surface_model.h"
+
+namespace pqlayout {
+
+// Where an output vertex lies on the reference surface: a triangle and barycentric
+// coordinates in the order of surface.face_vertices(face).
+struct QuadMeshVertex {
+  int face = -1;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+  bool on_boundary = false;  // on the reference boundary
+  bool corner = false;       // a boundary corner of the reference surface
+};
+
+struct ExtractionStats {
+  int regions_with_holes = 0;  // label regions that are not discs (left out)
+  int rejected_faces = 0;      // polygons OpenMesh refused (would be non-manifold)
+  int collapsed_edges = 0;     // short edges merged
+  int padded_faces = 0;        // loops with fewer than 3 output vertices, given extra points
+};
+
+struct ExtractedMesh {
+  PolyMesh mesh;                        // double points, faces oriented like the reference
+  std::vector<QuadMeshVertex> origin;   // per mesh vertex
+  ExtractionStats stats;
+};
+
+// surface: the reference triangles; phi, psi: one value per vertex (#V), their integer
+// levels are the curves; corner_angle_deg: boundary turning angle above which a reference
+// boundary vertex is a corner (kept as a mesh vertex); min_edge_length (metres, the stage
+// passes extract.min_edge × h): shorter edges are collapsed, 0 keeps all.
+// InvalidInput on size mismatch or non-finite values.
+Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
+                       double corner_angle_deg, double min_edge_length, ExtractedMesh* out);
+
+}  // namespace pqlayout
