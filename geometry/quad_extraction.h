@@ -21,6 +21,7 @@
 // island of another cell) it cannot be one polygon: it is left out and counted.
 #pragma once
 
+#include <map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -60,5 +61,26 @@ struct ExtractedMesh {
 // InvalidInput on size mismatch or non-finite values.
 Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
                        double corner_angle_deg, double min_edge_length, ExtractedMesh* out);
+
+// What the stage reports about an extracted mesh (lengths in metres).
+struct ExtractedMeshMetrics {
+  int n_vertices = 0, n_edges = 0, n_faces = 0;
+  int euler_characteristic = 0;  // V − E + F
+  int boundary_loops = 0;
+  double quad_fraction = 0.0;                 // faces with 4 sides / all faces
+  std::map<int, int> face_sides;              // number of sides → faces
+  std::map<int, int> vertex_valence;          // valence → vertices
+  double edge_min = 0.0, edge_mean = 0.0, edge_max = 0.0;
+  double planarity_max = 0.0, planarity_mean = 0.0;  // δ (PlanarityDelta)
+  double boundary_deviation_vertices = 0.0;  // max distance of a mesh boundary vertex to the reference boundary
+  double boundary_deviation_edges = 0.0;     // ... of any point of a mesh boundary edge (chord sagitta)
+  int n_reference_corners = 0;               // boundary corners of the reference surface
+  int n_corner_vertices = 0;                 // ... that are mesh vertices
+  // Faces that are not quads and touch no boundary vertex: sides and centroid.
+  std::vector<std::pair<int, Eigen::Vector3d>> interior_non_quads;
+};
+
+ExtractedMeshMetrics MeasureExtractedMesh(const SurfaceModel& surface, const ExtractedMesh& extracted,
+                                          double corner_angle_deg);
 
 }  // namespace pqlayout

@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "problems/build_info.h"
+#include "problems/report_html.h"
 #include "problems/stages.h"
 
 namespace pqlayout {
@@ -105,6 +106,7 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
   (*report)["run"]["stages_not_implemented"] = not_implemented;
   (*report)["run"]["total_seconds"] = SecondsSince(run_start);
   PQ_RETURN_IF_ERROR(out->WriteText("report.json", report->dump(2) + "\n"));
+  PQ_RETURN_IF_ERROR(WriteReportHtml(*report, out.get()));
   PQ_RETURN_IF_ERROR(out->Commit());
   LOG(INFO) << "wrote " << out->final_dir() << " in " << SecondsSince(run_start) << " s";
   return Status::Ok();

@@ -96,6 +96,16 @@ TEST(Cli, RunWritesReportAndSurface) {
                           "min_crossing_angle_deg", "foldovers"})
     EXPECT_TRUE(report["stages"]["levelset"].contains(key)) << key;
   EXPECT_TRUE(report["stages"]["membrane"].contains("max_displacement"));
+  // report.html: self-contained, every figure inlined, the metrics shown.
+  const std::string html = ReadAll(dir + "/result/report.html");
+  EXPECT_EQ(html.find("src=\"http"), std::string::npos);   // nothing fetched from the network
+  EXPECT_EQ(html.find("href=\"http"), std::string::npos);
+  EXPECT_EQ(html.find("<img"), std::string::npos);
+  size_t figures = 0;
+  for (size_t at = html.find("<figure>"); at != std::string::npos; at = html.find("<figure>", at + 1)) ++figures;
+  EXPECT_EQ(figures, 3u);  // displacement, guidance, level sets
+  EXPECT_NE(html.find("alignment_rms_deg"), std::string::npos);
+  EXPECT_NE(html.find("max_displacement"), std::string::npos);
   // Nothing is left behind in the parent folder.
   for (const auto& entry : fs::directory_iterator(dir))
     EXPECT_EQ(entry.path().filename().string().find(".result.partial"), std::string::npos);

@@ -1,0 +1,256 @@
+// Quad-dominant mesh extraction (geometry/quad_extraction.h) on known answers: straight
+// level lines on a flat square give exactly the grid, on a disk and an annulus a manifold
+// mesh of the right topology; planarity δ on hand-computed polygons; the Great Court end to
+// end through the real membrane, guidance and level-set solves.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <set>
+
+#include "geometry/planarity.h"
+#include "geometry/quad_extraction.h"
+#include "problems/guidance.h"
+#include "problems/levelset.h"
+#include "problems/membrane.h"
+#include "tests/test_meshes.h"
+
+namespace pqlayout {
+namespace {
+
+using testing::FlatGridSoup;
+using testing::GeneratedMesh;
+using testing::ToMesh;
+
+// A flat grid of m × m squares of side `cell`, each split into two triangles.
+TriMesh ScaledGrid(int m, double cell) {
+  PolygonSoup soup = FlatGridSoup(m);
+  for (auto& p : soup.points) p *= cell;
+  return ToMesh(soup);
+}
+
+// φ, ψ = the coordinates rotated by `angle`, over h, plus offsets.
+void RotatedCoordinates(const SurfaceModel& s, double angle, double h, double offset, std::vector<double>* phi,
+                        std::vector<double>* psi) {
+  phi->clear();
+  psi->clear();
+  for (int v = 0; v < s.num_vertices(); ++v) {
+    const Eigen::Vector3d p = s.position(v);
+    phi->push_back((std::cos(angle) * p.x() + std::sin(angle) * p.y()) / h + offset);
+    psi->push_back((-std::sin(angle) * p.x() + std::cos(angle) * p.y()) / h + offset);
+  }
+}
+
+Eigen::Vector3d OriginPosition(const SurfaceModel& s, const QuadMeshVertex& o) {
+  const auto ids = s.face_vertices(o.face);
+  return o.barycentric[0] * s.position(ids[0]) + o.barycentric[1] * s.position(ids[1]) +
+         o.barycentric[2] * s.position(ids[2]);
+}
+
+void ExpectOriginsReproducePositions(const SurfaceModel& s, const ExtractedMesh& out) {
+  ASSERT_EQ(out.origin.size(), out.mesh.n_vertices());
+  for (const auto v : out.mesh.vertices()) {
+    const QuadMeshVertex& o = out.origin[v.idx()];
+    ASSERT_GE(o.face, 0);
+    EXPECT_NEAR(o.barycentric.sum(), 1.0, 1e-12);
+    EXPECT_GE(o.barycentric.minCoeff(), -1e-12);
+    EXPECT_LE((OriginPosition(s, o) - ToEigen(out.mesh.point(v))).norm(), 1e-9) << "vertex " << v.idx();
+  }
+}
+
+// Every face a simple polygon in the xy-plane (flat tests), counter-clockwise like the
+// reference, every vertex manifold.
+void ExpectSimpleCounterClockwiseManifold(const PolyMesh& mesh) {
+  for (const auto f : mesh.faces()) {
+    std::vector<Eigen::Vector2d> p;
+    for (const auto v : mesh.fv_range(f)) p.push_back(ToEigen(mesh.point(v)).head<2>());
+    const size_t n = p.size();
+    double area = 0.0;
+    for (size_t k = 0; k < n; ++k) area += p[k].x() * p[(k + 1) % n].y() - p[(k + 1) % n].x() * p[k].y();
+    EXPECT_GT(area, 0.0) << "face " << f.idx();
+    const auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
+    for (size_t a = 0; a < n; ++a)
+      for (size_t b = a + 2; b < n; ++b) {
+        if (a == 0 && b == n - 1) continue;  // adjacent through the wrap
+        const Eigen::Vector2d p1 = p[a], p2 = p[(a + 1) % n], q1 = p[b], q2 = p[(b + 1) % n];
+        const bool separated = cross(p2 - p1, q1 - p1) * cross(p2 - p1, q2 - p1) > 0 ||
+                               cross(q2 - q1, p1 - q1) * cross(q2 - q1, p2 - q1) > 0;
+        EXPECT_TRUE(separated) << "face " << f.idx() << " crosses itself";
+      }
+  }
+  for (const auto v : mesh.vertices()) EXPECT_TRUE(mesh.is_manifold(v)) << "vertex " << v.idx();
+}
+
+// The square [0, n h]² with φ = x / h, ψ = y / h must give exactly the n × n grid.
+void ExpectExactGrid(int cells, double cell, double h) {
+  const SurfaceModel s(ScaledGrid(cells, cell));
+  const int n = static_cast<int>(std::lround(cells * cell / h));
+  std::vector<double> phi, psi;
+  RotatedCoordinates(s, 0.0, h, 0.0, &phi, &psi);
+  ExtractedMesh out;
+  ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.2 * h, &out).ok());
+  EXPECT_EQ(out.stats.rejected_faces, 0);
+  EXPECT_EQ(out.stats.regions_with_holes, 0);
+  ASSERT_EQ(static_cast<int>(out.mesh.n_vertices()), (n + 1) * (n + 1));
+  ASSERT_EQ(static_cast<int>(out.mesh.n_faces()), n * n);
+  for (const auto f : out.mesh.faces()) EXPECT_EQ(out.mesh.valence(f), 4u);
+  std::set<std::pair<long, long>> nodes;
+  for (const auto v : out.mesh.vertices()) {
+    const auto& p = out.mesh.point(v);
+    const double i = p[0] / h, j = p[1] / h;
+    EXPECT_NEAR(i, std::round(i), 1e-9);
+    EXPECT_NEAR(j, std::round(j), 1e-9);
+    EXPECT_NEAR(p[0], std::round(i) * h, 1e-9);
+    EXPECT_NEAR(p[1], std::round(j) * h, 1e-9);
+    nodes.insert({std::lround(i), std::lround(j)});
+  }
+  EXPECT_EQ(static_cast<int>(nodes.size()), (n + 1) * (n + 1));
+  ExpectSimpleCounterClockwiseManifold(out.mesh);
+  ExpectOriginsReproducePositions(s, out);
+  const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
+  EXPECT_EQ(m.quad_fraction, 1.0);
+  EXPECT_EQ(m.n_corner_vertices, 4);
+  EXPECT_NEAR(m.edge_min, h, 1e-9);
+  EXPECT_NEAR(m.edge_max, h, 1e-9);
+  EXPECT_LE(m.boundary_deviation_edges, 1e-12);
+  EXPECT_EQ(m.planarity_max, 0.0);
+}
+
+TEST(QuadExtraction, FlatSquareLevelLinesThroughVerticesAndAlongEdges) {
+  ExpectExactGrid(6, 1.0, 2.0);  // every level line along reference edges
+  ExpectExactGrid(6, 1.0, 1.0);  // a level line through every vertex
+}
+
+TEST(QuadExtraction, FlatSquareLevelLinesBetweenVertices) {
+  ExpectExactGrid(7, 6.0 / 7.0, 2.0);   // inner lines strictly between vertices, crossings on diagonals
+  ExpectExactGrid(5, 0.9, 1.5);         // lines at 1.5, 3.0: between vertices, crossings inside triangles
+}
+
+TEST(QuadExtraction, RotatedGridOnDiskIsAManifoldDisk) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  for (const double angle : {0.3, 1.0}) {
+    std::vector<double> phi, psi;
+    RotatedCoordinates(s, angle, 2.0, 0.37, &phi, &psi);
+    ExtractedMesh out;
+    ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.4, &out).ok());
+    EXPECT_EQ(out.stats.rejected_faces, 0);
+    EXPECT_EQ(out.stats.regions_with_holes, 0);
+    ExpectSimpleCounterClockwiseManifold(out.mesh);
+    ExpectOriginsReproducePositions(s, out);
+    const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
+    std::cout << "disk, angle " << angle << ": " << m.n_vertices << " vertices, " << m.n_faces << " faces, quad fraction "
+              << m.quad_fraction << ", min edge " << m.edge_min << ", boundary deviation (vertices) "
+              << m.boundary_deviation_vertices << "\n";
+    EXPECT_EQ(m.euler_characteristic, 1);
+    EXPECT_EQ(m.boundary_loops, 1);
+    EXPECT_TRUE(m.interior_non_quads.empty());
+    EXPECT_GE(m.edge_min, 0.4);
+    EXPECT_LE(m.boundary_deviation_vertices, 1e-9);
+    EXPECT_EQ(m.planarity_max, 0.0);
+    // Roughly π r² / h² faces.
+    EXPECT_NEAR(m.n_faces, M_PI * 100.0 / 4.0, 12.0);
+  }
+}
+
+TEST(QuadExtraction, AnnulusHasTwoBoundaryLoops) {
+  const SurfaceModel s(GeneratedMesh("annulus", 20.0, 8.0, 0.0, 0.7));
+  std::vector<double> phi, psi;
+  RotatedCoordinates(s, 0.5, 1.5, 0.21, &phi, &psi);
+  ExtractedMesh out;
+  ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.3, &out).ok());
+  EXPECT_EQ(out.stats.rejected_faces, 0);
+  EXPECT_EQ(out.stats.regions_with_holes, 0);
+  ExpectSimpleCounterClockwiseManifold(out.mesh);
+  ExpectOriginsReproducePositions(s, out);
+  const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
+  EXPECT_EQ(m.euler_characteristic, 0);
+  EXPECT_EQ(m.boundary_loops, 2);
+  EXPECT_TRUE(m.interior_non_quads.empty());
+}
+
+TEST(QuadExtraction, CurvedDomeOriginsReproducePositions) {
+  const SurfaceModel s(GeneratedMesh("dome", 20.0, 16.0, 3.0, 0.8));
+  std::vector<double> phi, psi;
+  RotatedCoordinates(s, 0.2, 1.7, 0.1, &phi, &psi);
+  ExtractedMesh out;
+  ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.2 * 1.7, &out).ok());
+  EXPECT_EQ(out.stats.rejected_faces, 0);
+  ExpectOriginsReproducePositions(s, out);
+  const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
+  EXPECT_EQ(m.euler_characteristic, 1);
+  EXPECT_EQ(m.n_corner_vertices, 4);
+  EXPECT_GT(m.planarity_max, 0.0);  // a curved surface: the quads are not planar
+  EXPECT_TRUE(m.interior_non_quads.empty());
+}
+
+TEST(PlanarityDelta, KnownPolygons) {
+  using V = Eigen::Vector3d;
+  EXPECT_EQ(PlanarityDelta({V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)}), 0.0);
+  // Unit square with one corner lifted by z: diagonals (0,0,0)–(1,1,z) and (1,0,0)–(0,1,0).
+  // Common normal of d1 = (1,1,z), d2 = (−1,1,0): n = (−z, −z, 2); distance
+  // |(1,0,0)·n| / |n| = z / √(2z² + 4); mean diagonal (√(2 + z²) + √2) / 2.
+  const double z = 0.3;
+  const double expected = z / std::sqrt(2 * z * z + 4) / (0.5 * (std::sqrt(2 + z * z) + std::sqrt(2.0)));
+  EXPECT_NEAR(PlanarityDelta({V(0, 0, 0), V(1, 0, 0), V(1, 1, z), V(0, 1, 0)}), expected, 1e-15);
+  std::vector<V> hexagon;
+  for (int k = 0; k < 6; ++k) hexagon.push_back(V(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0.0));
+  EXPECT_NEAR(PlanarityDelta(hexagon), 0.0, 1e-15);
+  hexagon[2].z() = 0.2;
+  EXPECT_GT(PlanarityDelta(hexagon), 0.01);
+  EXPECT_EQ(PlanarityDelta({V(0, 0, 0), V(1, 0, 3), V(0, 1, 7)}), 0.0);
+}
+
+TEST(QuadExtraction, RefusesMismatchedOrNonFiniteFields) {
+  const SurfaceModel s(ScaledGrid(2, 1.0));
+  ExtractedMesh out;
+  EXPECT_FALSE(ExtractQuadMesh(s, {0.0}, {0.0}, 30.0, 0.1, &out).ok());
+  std::vector<double> phi(s.num_vertices(), 0.5), psi(s.num_vertices(), 0.5);
+  phi[3] = NAN;
+  EXPECT_EQ(ExtractQuadMesh(s, phi, psi, 30.0, 0.1, &out).code(), StatusCode::kInvalidInput);
+}
+
+TEST(QuadExtraction, GreatCourtEndToEnd) {
+  const double h = 3.0;
+  const SurfaceModel s(GeneratedMesh("great_court", 0.0, 0.0, 0.0, 1.5));
+  VertexConditions supports(s.num_vertices());
+  for (int v = 0; v < s.num_vertices(); ++v)
+    if (s.is_boundary(v)) supports[v] = BoundaryCondition::kFixed;
+  MembraneSolution membrane;
+  ASSERT_TRUE(SolveMembrane(s, supports, MembraneOptions(), 1350.0, &membrane).ok());
+  GuidanceField guidance;
+  ASSERT_TRUE(ComputeStrainGuidance(s, membrane.v_z, GuidanceOptions(), &guidance).ok());
+  LevelSetSolution levelsets;
+  ASSERT_TRUE(SolveLevelSets(s, guidance, LevelsetOptions(), h, &levelsets).ok());
+
+  ExtractedMesh out;
+  ASSERT_TRUE(ExtractQuadMesh(s, levelsets.phi, levelsets.psi, 30.0, 0.2 * h, &out).ok());
+  const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
+  std::cout << "Great Court: " << m.n_vertices << " vertices, " << m.n_faces << " faces, quad fraction "
+            << m.quad_fraction << ", " << m.interior_non_quads.size() << " interior non-quads, corners "
+            << m.n_corner_vertices << "/" << m.n_reference_corners << ", boundary deviation vertices "
+            << m.boundary_deviation_vertices << " m, edges " << m.boundary_deviation_edges << " m, edge min/mean/max "
+            << m.edge_min / h << "/" << m.edge_mean / h << "/" << m.edge_max / h << " h, δ max " << m.planarity_max
+            << " mean " << m.planarity_mean << ", χ " << m.euler_characteristic << ", loops " << m.boundary_loops
+            << ", collapsed " << out.stats.collapsed_edges << ", padded " << out.stats.padded_faces
+            << ", holes " << out.stats.regions_with_holes << ", rejected " << out.stats.rejected_faces << "\n";
+  std::cout << "faces by sides:";
+  for (const auto& [sides, count] : m.face_sides) std::cout << " " << sides << ":" << count;
+  std::cout << "\n";
+  for (const auto& [sides, c] : m.interior_non_quads)
+    std::cout << "  interior " << sides << "-gon at (" << c.x() << ", " << c.y() << ")\n";
+  // The extraction's own guarantees.
+  EXPECT_EQ(out.stats.rejected_faces, 0);
+  EXPECT_EQ(out.stats.regions_with_holes, 0);
+  EXPECT_EQ(m.euler_characteristic, 0);  // a disc with the Reading Room's hole
+  EXPECT_EQ(m.boundary_loops, 2);
+  ExpectOriginsReproducePositions(s, out);
+  // Issue 5 acceptance.
+  EXPECT_EQ(m.n_reference_corners, 4);
+  EXPECT_EQ(m.n_corner_vertices, 4);
+  EXPECT_LE(m.boundary_deviation_vertices, 0.01 * h);
+  EXPECT_GE(m.edge_min, 0.2 * h);
+  EXPECT_GE(m.quad_fraction, 0.85);
+}
+
+}  // namespace
+}  // namespace pqlayout
