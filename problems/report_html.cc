@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace pqlayout {
 namespace {
@@ -80,11 +82,18 @@ std::string Summary(const nlohmann::json& report) {
   return s.str();
 }
 
-std::string Timings(const nlohmann::json& stages) {
+// Stage names in pipeline order (report.json's objects are sorted by key).
+std::vector<std::string> StagesInOrder(const nlohmann::json& report) {
+  std::vector<std::string> names;
+  for (const auto& name : report["run"].value("completed_stages", nlohmann::json::array())) names.push_back(name);
+  return names;
+}
+
+std::string Timings(const nlohmann::json& report) {
   std::ostringstream s;
   s << "<table><tr><th>stage</th><th>seconds</th></tr>\n";
-  for (const auto& [name, metrics] : stages.items())
-    s << "<tr><td>" << Escape(name) << "</td><td>" << Format(metrics["seconds"]) << "</td></tr>\n";
+  for (const auto& name : StagesInOrder(report))
+    s << "<tr><td>" << Escape(name) << "</td><td>" << Format(report["stages"][name]["seconds"]) << "</td></tr>\n";
   s << "</table>\n";
   return s.str();
 }
@@ -101,9 +110,9 @@ Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out) {
        << "figure{margin:1.5em 0}figure svg{width:100%;height:auto;border:1px solid #ddd}"
           "figcaption{color:#555;margin-top:0.3em}\n</style></head><body>\n"
        << "<h1>pqlayout: statics-sensitive layout</h1>\n<h2>Summary</h2>\n"
-       << Summary(report) << "<h2>Timings</h2>\n" << Timings(report["stages"]);
-  for (const auto& [name, metrics] : report["stages"].items())
-    page << "<h2>Stage " << Escape(name) << "</h2>\n" << MetricsTable(metrics);
+       << Summary(report) << "<h2>Timings</h2>\n" << Timings(report);
+  for (const auto& name : StagesInOrder(report))
+    page << "<h2>Stage " << Escape(name) << "</h2>\n" << MetricsTable(report["stages"][name]);
   page << "<h2>Figures</h2>\n";
   for (const auto& figure : kFigures) {
     std::ifstream in(out->Path(std::string("figures/") + figure.file));
