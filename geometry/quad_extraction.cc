@@ -477,6 +477,79 @@ void Compact(Polygons* m) {
   *m = std::move(compact);
 }
 
+// Along a boundary crossed obliquely by both families the boundary cells alternate between
+// triangles and pentagons. A triangle and a pentagon sharing a curve segment that ends on the
+// boundary form a hexagon, which is re-split into two quads by the diagonal that gives the
+// best-shaped quads (both convex in the hexagon's plane): the last segment of that curve then
+// ends at the neighbouring boundary point. Returns the number of re-split pairs.
+int ResplitBoundaryTrianglePentagonPairs(Polygons* m) {
+  std::map<std::pair<int, int>, int> face_of_halfedge;
+  for (size_t f = 0; f < m->faces.size(); ++f) {
+    const auto& face = m->faces[f];
+    for (size_t k = 0; k < face.size(); ++k) face_of_halfedge[{face[k], face[(k + 1) % face.size()]}] = int(f);
+  }
+  const auto has_edge = [&](int a, int b) { return face_of_halfedge.count({a, b}) || face_of_halfedge.count({b, a}); };
+  struct Candidate {
+    double score;
+    int f1, f2;
+    std::vector<int> q1, q2;
+  };
+  std::vector<Candidate> candidates;
+  for (const auto& [halfedge, f1] : face_of_halfedge) {
+    const auto [a, b] = halfedge;
+    const auto twin = face_of_halfedge.find({b, a});
+    if (twin == face_of_halfedge.end()) continue;
+    const int f2 = twin->second;
+    const size_t n1 = m->faces[f1].size(), n2 = m->faces[f2].size();
+    if (!((n1 == 3 && n2 == 5) || (n1 == 5 && n2 == 3))) continue;
+    if (m->origin[a].on_boundary == m->origin[b].on_boundary) continue;  // a curve's last segment only
+    // The hexagon: f1 from b round to a, then f2 from a round to b (without repeating a, b).
+    std::vector<int> hexagon;
+    const auto& face1 = m->faces[f1];
+    const auto& face2 = m->faces[f2];
+    const size_t start1 = std::find(face1.begin(), face1.end(), b) - face1.begin();
+    for (size_t k = 0; k < n1; ++k) hexagon.push_back(face1[(start1 + k) % n1]);
+    const size_t start2 = std::find(face2.begin(), face2.end(), a) - face2.begin();
+    for (size_t k = 1; k + 1 < n2; ++k) hexagon.push_back(face2[(start2 + k) % n2]);
+    if (hexagon.size() != 6 || std::set<int>(hexagon.begin(), hexagon.end()).size() != 6) continue;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // Newell
+    for (int k = 0; k < 6; ++k) normal += m->position[hexagon[k]].cross(m->position[hexagon[(k + 1) % 6]]);
+    if (!(normal.norm() > 0.0)) continue;
+    normal.normalize();
+    // Smallest interior angle of a quad, or a negative value if it is not convex.
+    const auto min_angle = [&](const std::vector<int>& quad) {
+      double smallest = M_PI;
+      for (int k = 0; k < 4; ++k) {
+        const Eigen::Vector3d p = m->position[quad[k]];
+        const Eigen::Vector3d in = p - m->position[quad[(k + 3) % 4]], out = m->position[quad[(k + 1) % 4]] - p;
+        const double turn = std::atan2(in.cross(out).dot(normal), in.dot(out));
+        if (turn <= 0.0) return -1.0;
+        smallest = std::min(smallest, M_PI - turn);
+      }
+      return smallest;
+    };
+    for (int s = 0; s < 3; ++s) {
+      const int p = hexagon[s], q = hexagon[s + 3];
+      if (has_edge(p, q) || (m->origin[p].on_boundary && m->origin[q].on_boundary)) continue;
+      std::vector<int> q1{hexagon[s], hexagon[s + 1], hexagon[s + 2], hexagon[s + 3]};
+      std::vector<int> q2{hexagon[s + 3], hexagon[(s + 4) % 6], hexagon[(s + 5) % 6], hexagon[s]};
+      const double score = std::min(min_angle(q1), min_angle(q2));
+      if (score > 15.0 * M_PI / 180.0) candidates.push_back({score, f1, f2, q1, q2});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
+  std::vector<char> used(m->faces.size(), 0);
+  int resplit = 0;
+  for (const Candidate& c : candidates) {
+    if (used[c.f1] || used[c.f2]) continue;
+    used[c.f1] = used[c.f2] = 1;
+    m->faces[c.f1] = c.q1;
+    m->faces[c.f2] = c.q2;
+    ++resplit;
+  }
+  return resplit;
+}
+
 // The loop's output vertices (as loop positions): where the curve changes, and corners.
 std::vector<int> OutputCorners(const std::vector<int>& points, const std::vector<Carrier>& carriers,
                                const std::vector<CutPoint>& cut) {
@@ -514,7 +587,8 @@ std::vector<int> Padded(std::vector<int> kept, const std::vector<int>& points, c
 }  // namespace
 
 Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
-                       double corner_angle_deg, double min_edge_length, ExtractedMesh* out) {
+                       double corner_angle_deg, double min_edge_length, ExtractedMesh* out,
+                       bool pair_boundary_triangles) {
   const int nv = surface.num_vertices();
   if (static_cast<int>(phi.size()) != nv || static_cast<int>(psi.size()) != nv)
     return Status::InvalidInput("extract: φ and ψ need one value per reference vertex (" + std::to_string(nv) + ")");
@@ -582,6 +656,7 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
   if (min_edge_length > 0.0) {
     while (const int collapsed = CollapseRound(min_edge_length, &polygons)) out->stats.collapsed_edges += collapsed;
   }
+  if (pair_boundary_triangles) out->stats.resplit_boundary_pairs = ResplitBoundaryTrianglePentagonPairs(&polygons);
   Compact(&polygons);
 
   PolyMesh& mesh = out->mesh;

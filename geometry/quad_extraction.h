@@ -15,7 +15,9 @@
 // geometry/level_lines.h: a value exactly equal to a level counts as above it.
 // Afterwards edges shorter than min_edge × h are collapsed (boundary corners stay, boundary
 // vertices stay on the boundary, the link condition keeps the mesh manifold); a quad that
-// loses a vertex becomes a triangle. Faces keep the reference orientation.
+// loses a vertex becomes a triangle. Where both families cross the boundary obliquely, a
+// boundary triangle and pentagon sharing a curve's last segment are re-split into two quads.
+// Faces keep the reference orientation.
 //
 // Where a region of one label is not a disc (it surrounds a hole of the surface or an
 // island of another cell) it cannot be one polygon: it is left out and counted.
@@ -46,6 +48,7 @@ struct ExtractionStats {
   int rejected_faces = 0;      // polygons OpenMesh refused (would be non-manifold)
   int collapsed_edges = 0;     // short edges merged
   int padded_faces = 0;        // loops with fewer than 3 output vertices, given extra points
+  int resplit_boundary_pairs = 0;  // boundary triangle + pentagon pairs re-split into two quads
 };
 
 struct ExtractedMesh {
@@ -57,10 +60,14 @@ struct ExtractedMesh {
 // surface: the reference triangles; phi, psi: one value per vertex (#V), their integer
 // levels are the curves; corner_angle_deg: boundary turning angle above which a reference
 // boundary vertex is a corner (kept as a mesh vertex); min_edge_length (metres, the stage
-// passes extract.min_edge × h): shorter edges are collapsed, 0 keeps all.
+// passes extract.min_edge × h): shorter edges are collapsed, 0 keeps all;
+// pair_boundary_triangles: where a boundary triangle and a boundary pentagon share the last
+// segment of a curve, re-split the hexagon they form into two quads (the curve then ends at
+// the neighbouring boundary point).
 // InvalidInput on size mismatch or non-finite values.
 Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
-                       double corner_angle_deg, double min_edge_length, ExtractedMesh* out);
+                       double corner_angle_deg, double min_edge_length, ExtractedMesh* out,
+                       bool pair_boundary_triangles = true);
 
 // What the stage reports about an extracted mesh (lengths in metres).
 struct ExtractedMeshMetrics {

@@ -24,7 +24,7 @@ const StageEntry kStages[] = {
     {Stage::kMembrane, "membrane", &RunMembraneStage},
     {Stage::kGuidance, "guidance", &RunGuidanceStage},
     {Stage::kLevelset, "levelset", &RunLevelsetStage},
-    {Stage::kExtract, "extract", nullptr},
+    {Stage::kExtract, "extract", &RunExtractStage},
     {Stage::kPlanarize, "planarize", nullptr},
     {Stage::kAnalyze, "analyze", nullptr},
 };

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "geometry/quad_extraction.h"
 #include "geometry/surface_model.h"
 #include "problems/boundary_conditions.h"
 #include "problems/config.h"
@@ -34,6 +35,7 @@ struct PipelineState {
   // stage membrane: vertex field "v_z" on *surface
   GuidanceField guidance;                 // stage guidance
   LevelSetSolution levelsets;             // stage levelset
+  ExtractedMesh quads;                    // stage extract: quad-dominant mesh + reference origins
 };
 
 // One stage: reads and extends state, writes files through out, fills metrics (JSON object;

@@ -19,4 +19,8 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
 // levelset: φ and ψ (Ceres); vertex fields "phi", "psi".
 Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
 
+// extract: quad-dominant mesh from the level lines φ, ψ ∈ ℤ (state->quads);
+// writes quads_initial.obj, quads_initial.ply (planarity δ as face colour).
+Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
+
 }  // namespace pqlayout

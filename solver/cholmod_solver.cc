@@ -31,6 +31,8 @@ bool CholmodSolver::is_supernodal() const { return impl_->factor && impl_->facto
 Status CholmodSolver::Factorize(const Eigen::SparseMatrix<double>& A_in) {
   if (impl_->factor) cholmod_free_factor(&impl_->factor, &impl_->common);
   rows_ = 0;
+  failed_row_ = -1;
+  rcond_ = 0.0;
   if (A_in.rows() != A_in.cols())
     return Status::InvalidInput("matrix is not square (" + std::to_string(A_in.rows()) + " x " +
                                 std::to_string(A_in.cols()) + ")");
@@ -62,15 +64,19 @@ Status CholmodSolver::Factorize(const Eigen::SparseMatrix<double>& A_in) {
   cholmod_factorize(&view, impl_->factor, c);
   if (c->status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
     const auto column = impl_->factor->minor;
+    // minor counts in the fill-reducing ordering; Perm maps it back to A's numbering.
+    const auto* perm = static_cast<const int*>(impl_->factor->Perm);
+    failed_row_ = perm && column < impl_->factor->n ? perm[column] : static_cast<int>(column);
     cholmod_free_factor(&impl_->factor, c);
-    return Status::Internal("matrix is not positive definite (Cholesky failed at column " +
-                            std::to_string(column) + ")");
+    return Status::Internal("matrix is not positive definite (Cholesky failed at row " +
+                            std::to_string(failed_row_) + ")");
   }
   if (c->status != CHOLMOD_OK) {
     cholmod_free_factor(&impl_->factor, c);
     return Status::Internal("CHOLMOD factorize failed (status " + std::to_string(c->status) + ")");
   }
   rows_ = static_cast<int>(A.rows());
+  rcond_ = cholmod_rcond(impl_->factor, c);
   return Status::Ok();
 }
 

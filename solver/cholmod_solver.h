@@ -33,11 +33,18 @@ class CholmodSolver {
   bool factorized() const;
   bool is_supernodal() const;
   int rows() const { return rows_; }
+  // After a failed Factorize: the row/column of A (original numbering) where the Cholesky
+  // factorisation broke down, or -1. Callers map it back to a vertex or node.
+  int failed_row() const { return failed_row_; }
+  // Reciprocal condition number estimate of the last factorisation (CHOLMOD's rcond).
+  double rcond() const { return rcond_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int rows_ = 0;
+  int failed_row_ = -1;
+  double rcond_ = 0.0;
 };
 
 }  // namespace pqlayout

@@ -1,0 +1,96 @@
+// Stage `extract` (paper §3.1 step 3, SPEC §5): the quad-dominant mesh from the level lines
+// φ = i, ψ = j of stage `levelset` (geometry/quad_extraction.h). Writes quads_initial.obj and
+// quads_initial.ply (per-face planarity δ as colour, viridis, yellow at δ ≥ 0.025, the
+// paper's Fig. 8 scale) and reports the mesh's size, shape and planarity before
+// planarisation.
+#include <glog/logging.h>
+
+#include <algorithm>
+
+#include "geometry/mesh_io.h"
+#include "geometry/planarity.h"
+#include "geometry/quad_extraction.h"
+#include "geometry/svg_canvas.h"
+#include "problems/stages.h"
+
+namespace pqlayout {
+namespace {
+
+constexpr double kDeltaColourScale = 0.025;  // δ at the top of the colour map
+
+void ColourByPlanarity(PolyMesh* mesh) {
+  mesh->request_face_colors();
+  for (const auto f : mesh->faces()) {
+    std::vector<Eigen::Vector3d> polygon;
+    for (const auto v : mesh->fv_range(f)) polygon.push_back(ToEigen(mesh->point(v)));
+    const Rgb c = Viridis(PlanarityDelta(polygon) / kDeltaColourScale);
+    mesh->set_color(f, PolyMesh::Color(c.r, c.g, c.b));
+  }
+}
+
+nlohmann::json Histogram(const std::map<int, int>& counts) {
+  nlohmann::json histogram = nlohmann::json::object();
+  for (const auto& [key, count] : counts) histogram[std::to_string(key)] = count;
+  return histogram;
+}
+
+nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stats, double h) {
+  nlohmann::json non_quads = nlohmann::json::array();
+  for (const auto& [sides, c] : m.interior_non_quads)
+    non_quads.push_back({{"sides", sides}, {"centroid", {c.x(), c.y(), c.z()}}});
+  return {{"n_vertices", m.n_vertices},
+          {"n_faces", m.n_faces},
+          {"n_edges", m.n_edges},
+          {"quad_fraction", m.quad_fraction},
+          {"face_sides", Histogram(m.face_sides)},
+          {"valence_histogram", Histogram(m.vertex_valence)},
+          {"edge_length_min", m.edge_min / h},
+          {"edge_length_mean", m.edge_mean / h},
+          {"edge_length_max", m.edge_max / h},
+          {"edge_lengths_relative_to", "layout.spacing"},
+          {"planarity_max", m.planarity_max},
+          {"planarity_mean", m.planarity_mean},
+          {"boundary_deviation", m.boundary_deviation_vertices},
+          {"boundary_deviation_edges", m.boundary_deviation_edges},
+          {"n_corner_vertices", m.n_corner_vertices},
+          {"n_reference_corners", m.n_reference_corners},
+          {"euler_characteristic", m.euler_characteristic},
+          {"boundary_loops", m.boundary_loops},
+          {"interior_non_quads", non_quads},
+          {"collapsed_edges", stats.collapsed_edges},
+          {"resplit_boundary_pairs", stats.resplit_boundary_pairs},
+          {"regions_with_holes", stats.regions_with_holes},
+          {"rejected_faces", stats.rejected_faces}};
+}
+
+}  // namespace
+
+Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
+  const SurfaceModel& surface = *state->surface;
+  const ExtractOptions& options = state->config.extract;
+  const double h = state->config.layout.spacing;
+  ExtractedMesh& quads = state->quads;
+  PQ_RETURN_IF_ERROR(ExtractQuadMesh(surface, state->levelsets.phi, state->levelsets.psi, options.corner_angle,
+                                     options.min_edge * h, &quads));
+  if (quads.mesh.n_faces() == 0)
+    return Status::Internal("extract: no faces (do the level sets φ, ψ cross any integer level?)");
+  const ExtractedMeshMetrics m = MeasureExtractedMesh(surface, quads, options.corner_angle);
+  *metrics = ToJson(m, quads.stats, h);
+
+  PolyMesh coloured = quads.mesh;
+  ColourByPlanarity(&coloured);
+  PQ_RETURN_IF_ERROR(WriteMesh(quads.mesh, out->Path("quads_initial.obj")));
+  PQ_RETURN_IF_ERROR(WriteMesh(coloured, out->Path("quads_initial.ply")));
+
+  LOG(INFO) << "extract: " << m.n_vertices << " vertices, " << m.n_faces << " faces, " << 100.0 * m.quad_fraction
+            << " % quads (" << m.interior_non_quads.size() << " non-quads off the boundary), edges "
+            << m.edge_min / h << "–" << m.edge_max / h << " h (mean " << m.edge_mean / h << "), δ max "
+            << m.planarity_max << " mean " << m.planarity_mean << ", corners " << m.n_corner_vertices << "/"
+            << m.n_reference_corners << ", " << quads.stats.collapsed_edges << " short edges merged";
+  if (quads.stats.rejected_faces > 0 || quads.stats.regions_with_holes > 0)
+    LOG(WARNING) << "extract: " << quads.stats.rejected_faces << " faces refused as non-manifold, "
+                 << quads.stats.regions_with_holes << " cells left out because they are not discs";
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,198 @@
+#include "solver/frame_analysis.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/SparseCore>
+
+#include "solver/cholmod_solver.h"
+
+namespace pqlayout {
+
+FrameSection FrameSection::CircularHollow(double D, double t) {
+  const double d = D - 2.0 * t;
+  FrameSection s;
+  s.area = M_PI / 4.0 * (D * D - d * d);
+  s.inertia_y = s.inertia_z = M_PI / 64.0 * (std::pow(D, 4) - std::pow(d, 4));
+  s.torsion = 2.0 * s.inertia_y;
+  return s;
+}
+
+FrameSection FrameSection::RectangularHollow(double b, double h, double t) {
+  FrameSection s;
+  const double bi = b - 2.0 * t, hi = h - 2.0 * t;
+  s.area = b * h - bi * hi;
+  s.inertia_y = (b * h * h * h - bi * hi * hi * hi) / 12.0;  // deflection along z (height)
+  s.inertia_z = (h * b * b * b - hi * bi * bi * bi) / 12.0;
+  s.torsion = 2.0 * t * std::pow(b - t, 2) * std::pow(h - t, 2) / (b + h - 2.0 * t);
+  return s;
+}
+
+const char* DofName(int dof) {
+  static const char* kNames[6] = {"u_x", "u_y", "u_z", "θ_x", "θ_y", "θ_z"};
+  return kNames[dof];
+}
+
+Eigen::Matrix<double, 12, 12> LocalBeamStiffness(double L, const FrameSection& s, const FrameMaterial& m) {
+  const double E = m.youngs_modulus, G = m.shear_modulus;
+  const double EA = E * s.area / L, GJ = G * s.torsion / L;
+  const double Iz = s.inertia_z, Iy = s.inertia_y;
+  Eigen::Matrix<double, 12, 12> k = Eigen::Matrix<double, 12, 12>::Zero();
+  // Axial (0, 6) and torsion (3, 9).
+  k(0, 0) = k(6, 6) = EA;
+  k(0, 6) = k(6, 0) = -EA;
+  k(3, 3) = k(9, 9) = GJ;
+  k(3, 9) = k(9, 3) = -GJ;
+  // Bending in the x–y plane (v: 1, 7; θ_z: 5, 11), stiffness E I_z.
+  const double a = 12 * E * Iz / (L * L * L), b = 6 * E * Iz / (L * L), c = 4 * E * Iz / L, d = 2 * E * Iz / L;
+  k(1, 1) = k(7, 7) = a;
+  k(1, 7) = k(7, 1) = -a;
+  k(1, 5) = k(5, 1) = k(1, 11) = k(11, 1) = b;
+  k(7, 5) = k(5, 7) = k(7, 11) = k(11, 7) = -b;
+  k(5, 5) = k(11, 11) = c;
+  k(5, 11) = k(11, 5) = d;
+  // Bending in the x–z plane (w: 2, 8; θ_y: 4, 10), stiffness E I_y (signs flip: θ_y = −dw/dx).
+  const double e = 12 * E * Iy / (L * L * L), f = 6 * E * Iy / (L * L), g = 4 * E * Iy / L, h = 2 * E * Iy / L;
+  k(2, 2) = k(8, 8) = e;
+  k(2, 8) = k(8, 2) = -e;
+  k(2, 4) = k(4, 2) = k(2, 10) = k(10, 2) = -f;
+  k(8, 4) = k(4, 8) = k(8, 10) = k(10, 8) = f;
+  k(4, 4) = k(10, 10) = g;
+  k(4, 10) = k(10, 4) = h;
+  return k;
+}
+
+Eigen::Matrix3d MemberFrame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& up) {
+  const Eigen::Vector3d x = (b - a).normalized();
+  Eigen::Vector3d z = up - x * x.dot(up);
+  if (z.norm() < 1e-9 * up.norm() || !(z.norm() > 0.0)) {
+    // The reference is parallel to the member: any perpendicular will do.
+    const Eigen::Vector3d trial = std::abs(x.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+    z = trial - x * x.dot(trial);
+  }
+  z.normalize();
+  const Eigen::Vector3d y = z.cross(x);
+  Eigen::Matrix3d R;
+  R.row(0) = x;
+  R.row(1) = y;
+  R.row(2) = z;
+  return R;
+}
+
+namespace {
+
+Eigen::Matrix<double, 12, 12> Transformation(const Eigen::Matrix3d& R) {
+  Eigen::Matrix<double, 12, 12> T = Eigen::Matrix<double, 12, 12>::Zero();
+  for (int k = 0; k < 4; ++k) T.block<3, 3>(3 * k, 3 * k) = R;
+  return T;
+}
+
+Status CheckModel(const FrameModel& m) {
+  const int n = static_cast<int>(m.nodes.size());
+  if (n == 0 || m.members.empty()) return Status::InvalidInput("frame: no nodes or no members");
+  if (!m.restraints.empty() && static_cast<int>(m.restraints.size()) != n)
+    return Status::Internal("frame: restraints size mismatch");
+  if (!m.loads.empty() && static_cast<int>(m.loads.size()) != n) return Status::Internal("frame: loads size mismatch");
+  if (!(m.section.area > 0 && m.section.inertia_y > 0 && m.section.inertia_z > 0 && m.section.torsion > 0))
+    return Status::InvalidInput("frame: section constants must be positive");
+  for (size_t e = 0; e < m.members.size(); ++e) {
+    const auto& mb = m.members[e];
+    if (mb.a < 0 || mb.b < 0 || mb.a >= n || mb.b >= n || mb.a == mb.b)
+      return Status::InvalidInput("frame: member " + std::to_string(e) + " has invalid end nodes");
+    if (!((m.nodes[mb.a] - m.nodes[mb.b]).norm() > 0.0))
+      return Status::InvalidInput("frame: member " + std::to_string(e) + " has zero length");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status SolveFrame(const FrameModel& m, FrameResult* r) {
+  PQ_RETURN_IF_ERROR(CheckModel(m));
+  const int n = static_cast<int>(m.nodes.size());
+  // Free DOFs numbered consecutively.
+  std::vector<int> index(6 * n, -1);
+  int free = 0;
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 6; ++d)
+      if (m.restraints.empty() || !m.restraints[i][d]) index[6 * i + d] = free++;
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(144 * m.members.size());
+  std::vector<Eigen::Matrix<double, 12, 12>> member_k(m.members.size()), member_t(m.members.size());
+  for (size_t e = 0; e < m.members.size(); ++e) {
+    const auto& mb = m.members[e];
+    const double L = (m.nodes[mb.b] - m.nodes[mb.a]).norm();
+    member_t[e] = Transformation(MemberFrame(m.nodes[mb.a], m.nodes[mb.b], mb.up));
+    member_k[e] = LocalBeamStiffness(L, m.section, m.material);
+    const Eigen::Matrix<double, 12, 12> K = member_t[e].transpose() * member_k[e] * member_t[e];
+    int dofs[12];
+    for (int k = 0; k < 6; ++k) dofs[k] = 6 * mb.a + k, dofs[6 + k] = 6 * mb.b + k;
+    for (int p = 0; p < 12; ++p)
+      for (int q = 0; q < 12; ++q)
+        if (index[dofs[p]] >= 0 && index[dofs[q]] >= 0) triplets.emplace_back(index[dofs[p]], index[dofs[q]], K(p, q));
+  }
+  Eigen::VectorXd f_full = Eigen::VectorXd::Zero(6 * n);
+  for (int i = 0; i < n && !m.loads.empty(); ++i) f_full.segment<6>(6 * i) = m.loads[i];
+  Eigen::VectorXd f(free);
+  for (int k = 0; k < 6 * n; ++k)
+    if (index[k] >= 0) f[index[k]] = f_full[k];
+  Eigen::SparseMatrix<double> K(free, free);
+  K.setFromTriplets(triplets.begin(), triplets.end());
+
+  CholmodSolver solver;
+  const Status factored = solver.Factorize(K);
+  auto unsupported = [&](int row, const std::string& why) {
+    int node = -1, dof = -1;
+    for (int k = 0; k < 6 * n; ++k)
+      if (index[k] == row) node = k / 6, dof = k % 6;
+    return Status::InvalidInput("the frame is a mechanism (" + why + "): node " + std::to_string(node) + " (" +
+                                (dof >= 0 ? DofName(dof) : "?") +
+                                ") belongs to a part that the supports do not hold; check boundary.default / boundary.rules");
+  };
+  if (!factored.ok()) {
+    if (solver.failed_row() >= 0) return unsupported(solver.failed_row(), "singular stiffness");
+    return factored;
+  }
+  Eigen::VectorXd u_free;
+  PQ_RETURN_IF_ERROR(solver.Solve(f, &u_free));
+  if (solver.rcond() < 1e-13 || !u_free.allFinite()) {
+    // Nearly singular: report the DOF that moves most.
+    int row = 0;
+    u_free.cwiseAbs().maxCoeff(&row);
+    std::ostringstream why;
+    why << "reciprocal condition number " << solver.rcond();
+    return unsupported(row, why.str());
+  }
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(6 * n);
+  for (int k = 0; k < 6 * n; ++k)
+    if (index[k] >= 0) u[k] = u_free[index[k]];
+
+  // Reactions: what the supports must add so that K u = f + R holds at every DOF.
+  Eigen::VectorXd internal = Eigen::VectorXd::Zero(6 * n);
+  r->member_end_forces.resize(m.members.size());
+  r->axial_force.resize(m.members.size());
+  for (size_t e = 0; e < m.members.size(); ++e) {
+    const auto& mb = m.members[e];
+    Eigen::Matrix<double, 12, 1> ue;
+    ue << u.segment<6>(6 * mb.a), u.segment<6>(6 * mb.b);
+    const Eigen::Matrix<double, 12, 1> local = member_k[e] * (member_t[e] * ue);
+    r->member_end_forces[e] = local;
+    r->axial_force[e] = local[6];  // force at end b along local x: tension positive
+    const Eigen::Matrix<double, 12, 1> global = member_t[e].transpose() * local;
+    internal.segment<6>(6 * mb.a) += global.head<6>();
+    internal.segment<6>(6 * mb.b) += global.tail<6>();
+  }
+  r->displacement.resize(n);
+  r->reaction.assign(n, NodeVector::Zero());
+  r->nodal_compliance.resize(n);
+  for (int i = 0; i < n; ++i) {
+    r->displacement[i] = u.segment<6>(6 * i);
+    for (int d = 0; d < 6; ++d)
+      if (index[6 * i + d] < 0) r->reaction[i][d] = internal[6 * i + d] - f_full[6 * i + d];
+    r->nodal_compliance[i] = f_full.segment<3>(6 * i).dot(u.segment<3>(6 * i));
+  }
+  r->compliance = f_full.dot(u);
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

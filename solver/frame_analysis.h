@@ -1,0 +1,80 @@
+// Linear static analysis of a rigid-jointed 3D frame (SPEC §7): nodes with 6 DOFs
+// (u_x, u_y, u_z, θ_x, θ_y, θ_z), members as 12-DOF Euler–Bernoulli beams (axial, torsion,
+// bending in two planes, no shear deformation), supports as restrained DOFs, nodal loads.
+// The stiffness matrix is assembled in world coordinates and solved with CHOLMOD; a frame
+// that is a mechanism (singular or numerically singular stiffness) is refused, naming a
+// node and DOF of the unsupported part.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "geometry/status.h"
+
+namespace pqlayout {
+
+// Cross-section constants (metres).
+struct FrameSection {
+  double area = 0.0;      // A
+  double inertia_y = 0.0; // I about local y: bending with deflection along local z
+  double inertia_z = 0.0; // I about local z: bending with deflection along local y
+  double torsion = 0.0;   // J
+  // Circular hollow section, outside diameter D, wall t: A = π/4 (D² − d²),
+  // I = π/64 (D⁴ − d⁴) about both axes, J = 2I, d = D − 2t.
+  static FrameSection CircularHollow(double diameter, double thickness);
+  // Rectangular hollow section, width b (local y), height h (local z), wall t; thin-walled
+  // torsion constant J = 2 t (b − t)² (h − t)² / (b + h − 2t) (Bredt).
+  static FrameSection RectangularHollow(double width, double height, double thickness);
+};
+
+struct FrameMaterial {
+  double youngs_modulus = 210e9;  // E, Pa
+  double shear_modulus = 210e9 / 2.6;  // G = E / (2(1+ν)), Pa
+};
+
+struct FrameMember {
+  int a = -1, b = -1;  // end nodes
+  // Orientation of the section: local x runs from a to b; local z is this vector projected
+  // onto the plane normal to x (for a grid shell: the surface normal); local y = z × x.
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+};
+
+// DOF order per node: u_x, u_y, u_z, θ_x, θ_y, θ_z.
+using NodeVector = Eigen::Matrix<double, 6, 1>;
+using Restraints = std::array<bool, 6>;
+
+struct FrameModel {
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<FrameMember> members;
+  std::vector<Restraints> restraints;  // per node; empty = none restrained
+  std::vector<NodeVector> loads;       // per node: forces (N) and moments (N·m)
+  FrameSection section;
+  FrameMaterial material;
+};
+
+struct FrameResult {
+  std::vector<NodeVector> displacement;  // per node
+  std::vector<NodeVector> reaction;      // per node (zero where nothing is restrained)
+  // Member end forces in local coordinates: [N_a, V_ya, V_za, T_a, M_ya, M_za, N_b, ...]
+  // acting on the member at its ends.
+  std::vector<Eigen::Matrix<double, 12, 1>> member_end_forces;
+  std::vector<double> axial_force;       // per member, tension positive, N
+  double compliance = 0.0;               // fᵀu over all DOFs, J
+  std::vector<double> nodal_compliance;  // f_i · u_i (translations), J
+};
+
+// Names a DOF for messages: "u_x", ..., "θ_z".
+const char* DofName(int dof);
+
+// The 12×12 local stiffness matrix of one member (local axes, DOFs [a(6), b(6)]).
+Eigen::Matrix<double, 12, 12> LocalBeamStiffness(double length, const FrameSection& s, const FrameMaterial& m);
+// Rows: local x, y, z axes in world coordinates.
+Eigen::Matrix3d MemberFrame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& up);
+
+Status SolveFrame(const FrameModel& model, FrameResult* result);
+
+}  // namespace pqlayout
