@@ -477,11 +477,46 @@ void Compact(Polygons* m) {
   *m = std::move(compact);
 }
 
+// Boundary vertices that no interior edge reaches (valence 2, one face), are no corner and
+// lie on a straight piece of the boundary (a curve that touched the boundary and left it
+// again, or the end of a merged sliver) carry nothing: removed from their face.
+int DropIdleBoundaryVertices(Polygons* m) {
+  std::vector<std::set<int>> neighbours(m->position.size());
+  std::vector<int> face_count(m->position.size(), 0);
+  for (const auto& face : m->faces)
+    for (size_t k = 0; k < face.size(); ++k) {
+      neighbours[face[k]].insert(face[(k + 1) % face.size()]);
+      neighbours[face[(k + 1) % face.size()]].insert(face[k]);
+      ++face_count[face[k]];
+    }
+  int dropped = 0;
+  for (auto& face : m->faces) {
+    for (size_t k = 0; k < face.size() && face.size() > 3;) {
+      const int v = face[k], prev = face[(k + face.size() - 1) % face.size()], next = face[(k + 1) % face.size()];
+      const QuadMeshVertex& o = m->origin[v];
+      const Eigen::Vector3d chord = m->position[next] - m->position[prev];
+      const double off_chord = chord.norm() > 0.0
+                                   ? (m->position[v] - m->position[prev]).cross(chord).norm() / chord.norm()
+                                   : INFINITY;
+      if (neighbours[v].size() == 2 && face_count[v] == 1 && o.on_boundary && !o.corner &&
+          off_chord <= 1e-6 * chord.norm()) {
+        face.erase(face.begin() + k);
+        ++dropped;
+      } else {
+        ++k;
+      }
+    }
+  }
+  return dropped;
+}
+
 // Along a boundary crossed obliquely by both families the boundary cells alternate between
 // triangles and pentagons. A triangle and a pentagon sharing a curve segment that ends on the
 // boundary form a hexagon, which is re-split into two quads by the diagonal that gives the
-// best-shaped quads (both convex in the hexagon's plane): the last segment of that curve then
+// best-shaped quads (every angle between 20° and 160° in the hexagon's plane): the last segment of that curve then
 // ends at the neighbouring boundary point. Returns the number of re-split pairs.
+constexpr double kMinResplitAngle = 20.0 * M_PI / 180.0;  // both quads: every angle in [20°, 160°]
+
 int ResplitBoundaryTrianglePentagonPairs(Polygons* m) {
   std::map<std::pair<int, int>, int> face_of_halfedge;
   for (size_t f = 0; f < m->faces.size(); ++f) {
@@ -516,15 +551,15 @@ int ResplitBoundaryTrianglePentagonPairs(Polygons* m) {
     for (int k = 0; k < 6; ++k) normal += m->position[hexagon[k]].cross(m->position[hexagon[(k + 1) % 6]]);
     if (!(normal.norm() > 0.0)) continue;
     normal.normalize();
-    // Smallest interior angle of a quad, or a negative value if it is not convex.
+    // How far the quad is from degenerate: the smallest of its interior angles and their
+    // supplements (a corner of nearly 180° makes it a triangle with an extra point).
     const auto min_angle = [&](const std::vector<int>& quad) {
       double smallest = M_PI;
       for (int k = 0; k < 4; ++k) {
         const Eigen::Vector3d p = m->position[quad[k]];
         const Eigen::Vector3d in = p - m->position[quad[(k + 3) % 4]], out = m->position[quad[(k + 1) % 4]] - p;
         const double turn = std::atan2(in.cross(out).dot(normal), in.dot(out));
-        if (turn <= 0.0) return -1.0;
-        smallest = std::min(smallest, M_PI - turn);
+        smallest = std::min({smallest, M_PI - turn, turn});
       }
       return smallest;
     };
@@ -534,7 +569,7 @@ int ResplitBoundaryTrianglePentagonPairs(Polygons* m) {
       std::vector<int> q1{hexagon[s], hexagon[s + 1], hexagon[s + 2], hexagon[s + 3]};
       std::vector<int> q2{hexagon[s + 3], hexagon[(s + 4) % 6], hexagon[(s + 5) % 6], hexagon[s]};
       const double score = std::min(min_angle(q1), min_angle(q2));
-      if (score > 15.0 * M_PI / 180.0) candidates.push_back({score, f1, f2, q1, q2});
+      if (score > kMinResplitAngle) candidates.push_back({score, f1, f2, q1, q2});
     }
   }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
@@ -656,6 +691,7 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
   if (min_edge_length > 0.0) {
     while (const int collapsed = CollapseRound(min_edge_length, &polygons)) out->stats.collapsed_edges += collapsed;
   }
+  out->stats.dropped_boundary_vertices = DropIdleBoundaryVertices(&polygons);
   if (pair_boundary_triangles) out->stats.resplit_boundary_pairs = ResplitBoundaryTrianglePentagonPairs(&polygons);
   Compact(&polygons);
 

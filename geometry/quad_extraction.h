@@ -48,6 +48,7 @@ struct ExtractionStats {
   int rejected_faces = 0;      // polygons OpenMesh refused (would be non-manifold)
   int collapsed_edges = 0;     // short edges merged
   int padded_faces = 0;        // loops with fewer than 3 output vertices, given extra points
+  int dropped_boundary_vertices = 0;  // idle straight-boundary vertices removed (valence 2, no corner)
   int resplit_boundary_pairs = 0;  // boundary triangle + pentagon pairs re-split into two quads
 };
 

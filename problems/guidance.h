@@ -6,8 +6,9 @@
 //              (the paper's reference layout); magnitude |κ1 − κ2|.
 //   file:      per-face CSV `id,dx,dy,dz[,weight]`, projected onto the face plane.
 // Weight: 0 where magnitude < threshold × scale, ramping linearly to 1 at (threshold + ramp)
-// × scale; scale = max |ε_max| for strain, max (|κ1| + |κ2|) for curvature (so an umbilic
-// surface such as a sphere gets no alignment anywhere).
+// × scale; scale = max |ε_max| for strain, the 95th percentile of |κ1| + |κ2| for curvature
+// (so an umbilic surface such as a sphere gets no alignment anywhere, and a few sharply
+// curved faces do not set the scale for the whole roof).
 #pragma once
 
 #include <string>

@@ -69,15 +69,20 @@ Status ComputeStrainGuidance(const SurfaceModel& surface, const std::vector<doub
 Status ComputeCurvatureGuidance(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field) {
   Resize(surface.num_faces(), field);
   const std::vector<Eigen::Matrix3d> shape = FaceShapeOperators(surface);
-  field->scale = 0.0;
+  std::vector<double> curvature_sum(surface.num_faces());
   for (int f = 0; f < surface.num_faces(); ++f) {
     const TangentEigen curvature = DecomposeOnTangentPlane(shape[f], surface.face_normal(f));
     field->direction[f] = curvature.major_direction;
     field->major[f] = curvature.major;
     field->minor[f] = curvature.minor;
     field->magnitude[f] = std::abs(curvature.major - curvature.minor);
-    field->scale = std::max(field->scale, std::abs(curvature.major) + std::abs(curvature.minor));
+    curvature_sum[f] = std::abs(curvature.major) + std::abs(curvature.minor);
   }
+  // Scale: the 95th percentile of |κ1| + |κ2|, so that a few sharply curved faces (the Great
+  // Court's rectangle corners) do not decide the weights of the whole roof.
+  const auto rank = curvature_sum.begin() + static_cast<long>(0.95 * (curvature_sum.size() - 1));
+  std::nth_element(curvature_sum.begin(), rank, curvature_sum.end());
+  field->scale = *rank;
   field->weight = AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
   return Status::Ok();
 }
