@@ -15,9 +15,10 @@
 // geometry/level_lines.h: a value exactly equal to a level counts as above it.
 // Afterwards edges shorter than min_edge × h are collapsed (boundary corners stay, boundary
 // vertices stay on the boundary, the link condition keeps the mesh manifold); a quad that
-// loses a vertex becomes a triangle. Where both families cross the boundary obliquely, a
-// boundary triangle and pentagon sharing a curve's last segment are re-split into two quads.
-// Faces keep the reference orientation.
+// loses a vertex becomes a triangle. Boundary vertices that no interior edge reaches and that
+// lie on a straight piece of the boundary are dropped. Where both families cross the
+// boundary obliquely, a boundary triangle and pentagon sharing a curve's last segment are
+// re-split into two well-shaped quads when possible. Faces keep the reference orientation.
 //
 // Where a region of one label is not a disc (it surrounds a hole of the surface or an
 // island of another cell) it cannot be one polygon: it is left out and counted.

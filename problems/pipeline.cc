@@ -25,7 +25,7 @@ const StageEntry kStages[] = {
     {Stage::kGuidance, "guidance", &RunGuidanceStage},
     {Stage::kLevelset, "levelset", &RunLevelsetStage},
     {Stage::kExtract, "extract", &RunExtractStage},
-    {Stage::kPlanarize, "planarize", nullptr},
+    {Stage::kPlanarize, "planarize", &RunPlanarizeStage},
     {Stage::kAnalyze, "analyze", nullptr},
 };
 

@@ -36,6 +36,7 @@ struct PipelineState {
   GuidanceField guidance;                 // stage guidance
   LevelSetSolution levelsets;             // stage levelset
   ExtractedMesh quads;                    // stage extract: quad-dominant mesh + reference origins
+  ExtractedMesh planarized;               // stage planarize: the same mesh with planar faces
 };
 
 // One stage: reads and extends state, writes files through out, fills metrics (JSON object;

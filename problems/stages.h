@@ -23,4 +23,7 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
 // writes quads_initial.obj, quads_initial.ply (planarity δ as face colour).
 Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
 
+// planarize: planar faces, on the reference (Ceres); writes quads.obj, quads.ply.
+Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
+
 }  // namespace pqlayout

@@ -1,0 +1,202 @@
+// Stage `planarize`: see problems/planarize.h.
+#include <ceres/ceres.h>
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/closest_point.h"
+#include "geometry/mesh_io.h"
+#include "geometry/planarity.h"
+#include "problems/planarize.h"
+#include "problems/residuals/boundary_residual.h"
+#include "problems/residuals/closeness_residual.h"
+#include "problems/residuals/fairness_residual.h"
+#include "problems/residuals/planarity_residual.h"
+#include "problems/stages.h"
+
+namespace pqlayout {
+
+std::vector<double> FacePlanarity(const PolyMesh& mesh) {
+  std::vector<double> delta(mesh.n_faces(), 0.0);
+  for (const auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> polygon;
+    for (const auto v : mesh.fv_range(f)) polygon.push_back(ToEigen(mesh.point(v)));
+    delta[f.idx()] = PlanarityDelta(polygon);
+  }
+  return delta;
+}
+
+nlohmann::json PlanarizeReport::ToJson() const {
+  return {{"planarity_max", planarity_max},   {"planarity_mean", planarity_mean},
+          {"closeness_max", closeness_max},   {"closeness_mean", closeness_mean},
+          {"boundary_deviation", boundary_deviation}, {"max_displacement", max_displacement},
+          {"rounds", rounds},                 {"ceres", ceres}};
+}
+
+namespace {
+
+struct FacePlane {
+  Eigen::Vector3d n;
+  double d;
+  double mean_diagonal;
+};
+
+// Least-squares plane of a polygon (normal from the covariance, oriented like the polygon).
+FacePlane FitPlane(const std::vector<Eigen::Vector3d>& polygon) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), area = Eigen::Vector3d::Zero();
+  for (const auto& p : polygon) centroid += p;
+  centroid /= static_cast<double>(polygon.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    covariance += (polygon[i] - centroid) * (polygon[i] - centroid).transpose();
+    area += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance);
+  Eigen::Vector3d n = eig.eigenvectors().col(0);
+  if (n.dot(area) < 0) n = -n;
+  double diagonal = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < polygon.size(); ++i)
+    for (size_t j = i + 2; j < polygon.size(); ++j)
+      if (!(i == 0 && j == polygon.size() - 1)) diagonal += (polygon[i] - polygon[j]).norm(), ++count;
+  if (count == 0)  // a triangle: use its mean edge length
+    for (size_t i = 0; i < polygon.size(); ++i) diagonal += (polygon[i] - polygon[(i + 1) % polygon.size()]).norm(), ++count;
+  return {n, n.dot(centroid), diagonal / count};
+}
+
+void Measure(const PolyMesh& mesh, const std::vector<QuadMeshVertex>& origin, const ClosestPointQuery& query,
+             PlanarizeReport* report) {
+  const std::vector<double> delta = FacePlanarity(mesh);
+  report->planarity_max = delta.empty() ? 0.0 : *std::max_element(delta.begin(), delta.end());
+  double sum = 0.0;
+  for (const double d : delta) sum += d;
+  report->planarity_mean = delta.empty() ? 0.0 : sum / delta.size();
+  report->closeness_max = report->closeness_mean = report->boundary_deviation = 0.0;
+  for (const auto v : mesh.vertices()) {
+    const Eigen::Vector3d p = ToEigen(mesh.point(v));
+    const double distance = query.OnSurface(p).distance;
+    report->closeness_max = std::max(report->closeness_max, distance);
+    report->closeness_mean += distance / mesh.n_vertices();
+    if (origin[v.idx()].on_boundary)
+      report->boundary_deviation = std::max(report->boundary_deviation, query.OnBoundary(p).distance);
+  }
+}
+
+// The two polylines through each interior valence-4 vertex: (a, v, b) with a, b opposite.
+std::vector<std::array<int, 3>> PolylineTriples(const PolyMesh& mesh) {
+  std::vector<std::array<int, 3>> triples;
+  for (const auto v : mesh.vertices()) {
+    if (mesh.is_boundary(v) || mesh.valence(v) != 4) continue;
+    std::vector<int> ring;
+    for (const auto w : mesh.vv_range(v)) ring.push_back(w.idx());
+    triples.push_back({ring[0], v.idx(), ring[2]});
+    triples.push_back({ring[1], v.idx(), ring[3]});
+  }
+  return triples;
+}
+
+}  // namespace
+
+Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double h, ExtractedMesh* extracted,
+                     PlanarizeReport* report) {
+  PolyMesh& mesh = extracted->mesh;
+  const ClosestPointQuery query(reference);
+  const int nv = static_cast<int>(mesh.n_vertices());
+  std::vector<Eigen::Vector3d> start(nv);
+  std::vector<double> position(3 * nv);
+  for (int v = 0; v < nv; ++v) {
+    start[v] = ToEigen(mesh.point(VertexHandle(v)));
+    for (int k = 0; k < 3; ++k) position[3 * v + k] = start[v][k];
+  }
+  std::vector<std::vector<int>> faces;
+  std::vector<FacePlane> planes;
+  for (const auto f : mesh.faces()) {
+    std::vector<int> ids;
+    std::vector<Eigen::Vector3d> polygon;
+    for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx()), polygon.push_back(start[v.idx()]);
+    faces.push_back(ids);
+    planes.push_back(FitPlane(polygon));
+  }
+  const auto triples = PolylineTriples(mesh);
+  const auto& w = options.weights;
+  double planarity_weight = w.planarity;
+  Measure(mesh, extracted->origin, query, report);
+  for (report->rounds = 0; report->rounds < options.max_rounds && report->planarity_max > options.target_delta;) {
+    ++report->rounds;
+    ceres::Problem problem;
+    for (size_t f = 0; f < faces.size(); ++f) {
+      if (faces[f].size() < 4) continue;  // a triangle is planar
+      for (const int v : faces[f])
+        problem.AddResidualBlock(PlanarityResidual::Create(planarity_weight, planes[f].mean_diagonal), nullptr,
+                                 planes[f].n.data(), &planes[f].d, &position[3 * v]);
+      problem.SetManifold(planes[f].n.data(), new ceres::SphereManifold<3>());
+    }
+    for (int v = 0; v < nv; ++v) {
+      const Eigen::Vector3d p(position[3 * v], position[3 * v + 1], position[3 * v + 2]);
+      const SurfacePoint c = query.OnSurface(p);
+      problem.AddResidualBlock(ClosenessResidual::Create(c.point, c.normal, w.closeness, h), nullptr, &position[3 * v]);
+      if (extracted->origin[v].on_boundary && w.boundary > 0.0) {
+        const SurfacePoint b = query.OnBoundary(p);
+        problem.AddResidualBlock(BoundaryResidual::Create(b.point, b.tangent, w.boundary, h), nullptr, &position[3 * v]);
+      }
+    }
+    if (w.fairness > 0.0)
+      for (const auto& t : triples)
+        problem.AddResidualBlock(FairnessResidual::Create(w.fairness, h), nullptr, &position[3 * t[0]],
+                                 &position[3 * t[1]], &position[3 * t[2]]);
+    for (int v = 0; v < nv; ++v)
+      if (extracted->origin[v].corner && problem.HasParameterBlock(&position[3 * v]))
+        problem.SetParameterBlockConstant(&position[3 * v]);
+    ceres::Solver::Options solver;
+    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+    solver.num_threads = 2;
+    solver.max_num_iterations = 100;
+    solver.function_tolerance = 1e-12;
+    solver.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &problem, &summary);
+    if (!summary.IsSolutionUsable()) return Status::Internal("planarize: Ceres failed: " + summary.message);
+    for (int v = 0; v < nv; ++v)
+      mesh.set_point(VertexHandle(v), {position[3 * v], position[3 * v + 1], position[3 * v + 2]});
+    Measure(mesh, extracted->origin, query, report);
+    report->ceres.push_back({{"round", report->rounds}, {"planarity_weight", planarity_weight},
+                             {"iterations", summary.iterations.size() - 1}, {"initial_cost", summary.initial_cost},
+                             {"final_cost", summary.final_cost}, {"planarity_max", report->planarity_max},
+                             {"closeness_max", report->closeness_max}, {"seconds", summary.total_time_in_seconds}});
+    LOG(INFO) << "planarize: round " << report->rounds << ": δ max " << report->planarity_max << ", mean "
+              << report->planarity_mean << ", closeness max " << report->closeness_max << " m ("
+              << summary.iterations.size() - 1 << " iterations)";
+    planarity_weight *= 4.0;
+  }
+  for (int v = 0; v < nv; ++v)
+    report->max_displacement = std::max(report->max_displacement, (ToEigen(mesh.point(VertexHandle(v))) - start[v]).norm());
+  return Status::Ok();
+}
+
+Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
+  PlanarizeReport report;
+  state->planarized = state->quads;
+  PQ_RETURN_IF_ERROR(PlanarizeMesh(*state->surface, state->config.planarize, state->config.layout.spacing,
+                                   &state->planarized, &report));
+  *metrics = report.ToJson();
+  const double h = state->config.layout.spacing;
+  if (report.planarity_max > state->config.planarize.target_delta)
+    LOG(WARNING) << "planarize: δ max " << report.planarity_max << " is above planarize.target_delta "
+                 << state->config.planarize.target_delta << " after " << report.rounds << " rounds";
+  LOG(INFO) << "planarize: δ max " << report.planarity_max << " (mean " << report.planarity_mean << "), closeness max "
+            << report.closeness_max / h << " h, boundary " << report.boundary_deviation / h << " h, moved ≤ "
+            << report.max_displacement / h << " h";
+  PolyMesh& mesh = state->planarized.mesh;
+  PQ_RETURN_IF_ERROR(WriteMesh(mesh, out->Path("quads.obj")));
+  mesh.request_face_colors();
+  const std::vector<double> delta = FacePlanarity(mesh);
+  for (const auto f : mesh.faces()) {
+    const double t = std::clamp(delta[f.idx()] / (10.0 * state->config.planarize.target_delta), 0.0, 1.0);
+    mesh.set_color(f, OpenMesh::Vec3uc(static_cast<unsigned char>(255 * t), 64, static_cast<unsigned char>(255 * (1 - t))));
+  }
+  return WriteMesh(mesh, out->Path("quads.ply"));
+}
+
+}  // namespace pqlayout
