@@ -26,7 +26,7 @@ const StageEntry kStages[] = {
     {Stage::kLevelset, "levelset", &RunLevelsetStage},
     {Stage::kExtract, "extract", &RunExtractStage},
     {Stage::kPlanarize, "planarize", &RunPlanarizeStage},
-    {Stage::kAnalyze, "analyze", nullptr},
+    {Stage::kAnalyze, "analyze", &RunAnalyzeStage},
 };
 
 std::string UtcNow() {

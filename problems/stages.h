@@ -26,4 +26,7 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
 // planarize: planar faces, on the reference (Ceres); writes quads.obj, quads.ply.
 Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
 
+// analyze: the planarised mesh as a steel frame; writes analysis/nodes.csv, members.csv.
+Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
+
 }  // namespace pqlayout
