@@ -12,6 +12,7 @@
 #include <new>
 
 #include "problems/build_info.h"
+#include "problems/compare.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"
 
@@ -83,6 +84,13 @@ int Main(int argc, char** argv) {
   run->add_option("--until", run_args.until, "last stage to run")
       ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
   CLI::App* keys = app.add_subcommand("keys", "print the config reference (every key, default, meaning)");
+  RunArguments compare_args;
+  CLI::App* compare = app.add_subcommand(
+      "compare", "run CONFIG with strain and with curvature guidance and compare the two grid shells");
+  compare->add_option("CONFIG", compare_args.config, "YAML config file")->required();
+  compare->add_option("--set", compare_args.sets, "override a config key in both runs, KEY=VALUE; repeatable")
+      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  compare->add_option("--out", compare_args.out, "output folder (default: out/<config name>-compare)");
 
   try {
     app.parse(argc, argv);
@@ -106,6 +114,17 @@ int Main(int argc, char** argv) {
   }
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
+  if (compare->parsed()) {
+    pqlayout::CompareOptions options;
+    options.config_path = compare_args.config;
+    options.overrides = compare_args.sets;
+    options.command_line = command_line;
+    options.out_dir = compare_args.out.empty()
+                          ? "out/" + std::filesystem::path(compare_args.config).stem().string() + "-compare"
+                          : compare_args.out;
+    nlohmann::json comparison;
+    return ExitCode(pqlayout::RunCompare(options, &comparison));
+  }
   return Run(run_args, command_line);
 }
 

@@ -248,6 +248,11 @@ class Cutter {
     return result;
   }
 
+  bool IsPlateau(int f, Family family) const {
+    const auto ids = surface_.face_vertices(f);
+    return Value(ids[0], family) == Value(ids[1], family) && Value(ids[1], family) == Value(ids[2], family);
+  }
+
   // The non-degenerate pieces of `polygon` between consecutive integer levels of `family`.
   std::vector<std::pair<int, Polygon>> Slabs(int f, const Polygon& polygon, Family family) {
     double lo = INFINITY, hi = -INFINITY;
@@ -259,8 +264,10 @@ class Cutter {
     for (int level = static_cast<int>(std::floor(lo)); level <= static_cast<int>(std::floor(hi)); ++level) {
       Polygon slab = Clip(f, Clip(f, polygon, family, level, true), family, level + 1, false);
       if (slab.size() < 3) continue;
-      // All corners exactly on the lower level: a zero-area sliver (a ridge at the level).
-      const bool sliver = std::all_of(slab.begin(), slab.end(),
+      // All corners exactly on the lower level: a zero-area sliver along a ridge at the
+      // level, unless the whole face is at the level (a plateau, which belongs to the slab).
+      const bool sliver = !IsPlateau(f, family) &&
+                          std::all_of(slab.begin(), slab.end(),
                                       [&](const Corner& c) { return points_[c.point].value[family] == level; });
       if (!sliver) slabs.emplace_back(level, std::move(slab));
     }
@@ -641,13 +648,16 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
   *out = ExtractedMesh();
   Polygons polygons;
   std::vector<int> vertex_of_point(cut.size(), -1);
+  // The loop of every disc region: its points and the curve each loop edge lies on
+  // (reference boundary edges as one curve; interior reference edges along a level line as
+  // that line).
+  std::vector<std::vector<int>> loop_points;
+  std::vector<std::vector<Carrier>> loop_carriers;
   for (const auto& [region, region_loops] : loops) {
     if (region_loops.size() != 1) {
       ++out->stats.regions_with_holes;
       continue;
     }
-    // The loop's points and the curve each loop edge lies on (reference boundary edges as
-    // one curve; interior reference edges along a level line as that line).
     std::vector<int> points;
     std::vector<Carrier> carriers;
     for (const PieceEdge& e : region_loops[0]) {
@@ -658,21 +668,38 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
         c = {Carrier::kBoundary, 0};
       } else if (c.kind == Carrier::kReferenceEdge) {
         for (const int family : {kPhi, kPsi})
-          if (cut[a].value[family] == cut[b].value[family] && cut[a].value[family] == std::floor(cut[a].value[family]))
+          if (c.kind == Carrier::kReferenceEdge && cut[a].value[family] == cut[b].value[family] &&
+              cut[a].value[family] == std::floor(cut[a].value[family]))
             c = {family, static_cast<int>(cut[a].value[family])};
       }
       points.push_back(a);
       carriers.push_back(c);
     }
     if (points.size() < 3) continue;
-    std::vector<int> kept = OutputCorners(points, carriers, cut);
-    if (kept.size() < 3) {
-      kept = Padded(kept, points, carriers, cut);
-      ++out->stats.padded_faces;
-    }
+    loop_points.push_back(std::move(points));
+    loop_carriers.push_back(std::move(carriers));
+  }
+  // Output vertices are decided once for all loops, so that two regions along a shared
+  // chain keep the same points (no T-junctions even where ties make the curves ambiguous).
+  std::vector<char> is_output(cut.size(), 0);
+  for (size_t l = 0; l < loop_points.size(); ++l)
+    for (const int k : OutputCorners(loop_points[l], loop_carriers[l], cut)) is_output[loop_points[l][k]] = 1;
+  const auto kept_of = [&](size_t l) {
+    std::vector<int> kept;
+    for (size_t k = 0; k < loop_points[l].size(); ++k)
+      if (is_output[loop_points[l][k]]) kept.push_back(int(k));
+    return kept;
+  };
+  for (size_t l = 0; l < loop_points.size(); ++l) {
+    const std::vector<int> kept = kept_of(l);
+    if (kept.size() >= 3) continue;
+    for (const int k : Padded(kept, loop_points[l], loop_carriers[l], cut)) is_output[loop_points[l][k]] = 1;
+    ++out->stats.padded_faces;
+  }
+  for (size_t l = 0; l < loop_points.size(); ++l) {
     std::vector<int> face;
-    for (const int k : kept) {
-      const int p = points[k];
+    for (const int k : kept_of(l)) {
+      const int p = loop_points[l][k];
       if (vertex_of_point[p] < 0) {
         vertex_of_point[p] = static_cast<int>(polygons.position.size());
         polygons.position.push_back(cut[p].position);
@@ -685,7 +712,7 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
       }
       face.push_back(vertex_of_point[p]);
     }
-    polygons.faces.push_back(std::move(face));
+    if (face.size() >= 3) polygons.faces.push_back(std::move(face));
   }
 
   if (min_edge_length > 0.0) {

@@ -295,8 +295,9 @@ TEST(QuadExtraction, DISABLED_TiesAndCriticalPointsStayManifold) {
         psi[v] += 0.9 * std::cos(0.45 * p.x());
       }
     }
-    ExtractedMesh out;
-    ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.4, &out).ok());
+ ExtractedMesh out;
+    ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.0, &out, false).ok());
+    (void)WriteMesh(out.mesh, "/tmp/extviz/tie" + std::to_string(variant) + ".obj");
     const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
     std::cout << "variant " << variant << ": " << m.n_faces << " faces, quad fraction " << m.quad_fraction
               << ", χ " << m.euler_characteristic << ", rejected " << out.stats.rejected_faces << ", holes "
@@ -308,5 +309,26 @@ TEST(QuadExtraction, DISABLED_TiesAndCriticalPointsStayManifold) {
   }
 }
 
+}  // namespace
+}  // namespace pqlayout
+namespace pqlayout {
+namespace {
+TEST(QuadExtraction, DISABLED_Scratch) {
+  const SurfaceModel s(ScaledGrid(4, 1.0));
+  std::vector<double> phi, psi;
+  for (int v = 0; v < s.num_vertices(); ++v) {
+    const Eigen::Vector3d p = s.position(v);
+    phi.push_back(std::round(0.7 * p.x()));
+    psi.push_back(0.3 + 0.45 * p.y());
+  }
+  ExtractedMesh out;
+  ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.0, &out, false).ok());
+  for (const auto f : out.mesh.faces()) {
+    std::cout << "face";
+    for (const auto v : out.mesh.fv_range(f)) std::cout << " (" << out.mesh.point(v)[0] << "," << out.mesh.point(v)[1] << ")";
+    std::cout << "\n";
+  }
+  for (int v = 0; v < s.num_vertices(); ++v) std::cout << phi[v] << (v % 5 == 4 ? "\n" : " ");
+}
 }  // namespace
 }  // namespace pqlayout

@@ -1,0 +1,104 @@
+#include "problems/compare.h"
+
+#include <glog/logging.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "geometry/atomic_file.h"
+#include "problems/config.h"
+#include "problems/pipeline.h"
+
+namespace pqlayout {
+namespace {
+
+// The rows of the table: (stage, metric, label). Lower is better for all but quad fraction.
+struct Row {
+  const char* stage;
+  const char* metric;
+  const char* label;
+};
+const Row kRows[] = {
+    {"analyze", "compliance_total", "compliance total [J]"},
+    {"analyze", "compliance_node_mean", "nodal compliance, mean [J]"},
+    {"analyze", "compliance_node_max", "nodal compliance, max [J]"},
+    {"analyze", "compliance_per_tonne", "compliance per tonne of steel [J/t]"},
+    {"analyze", "max_displacement", "max displacement [m]"},
+    {"analyze", "steel_mass", "steel mass [kg]"},
+    {"analyze", "n_nodes", "nodes"},
+    {"analyze", "n_members", "members"},
+    {"extract", "n_faces", "faces"},
+    {"extract", "quad_fraction", "quad fraction"},
+    {"planarize", "planarity_max", "planarity δ, max"},
+    {"planarize", "planarity_mean", "planarity δ, mean"},
+    {"planarize", "closeness_max", "closeness, max [m]"},
+    {"planarize", "closeness_mean", "closeness, mean [m]"},
+    {"levelset", "alignment_rms_deg", "alignment to its guidance, RMS [°]"},
+};
+
+std::string Number(const nlohmann::json& v) {
+  if (!v.is_number()) return "–";
+  std::ostringstream s;
+  s.precision(4);
+  s << v.get<double>();
+  return s.str();
+}
+
+}  // namespace
+
+std::string ComparisonTable(const nlohmann::json& c) {
+  std::ostringstream s;
+  s << "| metric | strain guidance | curvature guidance | strain vs curvature |\n|---|---:|---:|---:|\n";
+  for (const auto& row : c["rows"]) {
+    s << "| " << row["label"].get<std::string>() << " | " << Number(row["strain"]) << " | " << Number(row["curvature"])
+      << " | ";
+    if (row["difference_percent"].is_number()) {
+      std::ostringstream d;
+      d.precision(3);
+      d << std::showpos << row["difference_percent"].get<double>() << " %";
+      s << d.str();
+    } else {
+      s << "–";
+    }
+    s << " |\n";
+  }
+  return s.str();
+}
+
+Status RunCompare(const CompareOptions& options, nlohmann::json* comparison) {
+  nlohmann::json reports;
+  for (const std::string source : {"strain", "curvature"}) {
+    std::vector<std::string> overrides = options.overrides;
+    overrides.push_back("guidance.source=" + source);
+    Config config;
+    PQ_RETURN_IF_ERROR(LoadConfig(options.config_path, overrides, &config));
+    RunOptions run;
+    run.config_path = options.config_path;
+    run.out_dir = (std::filesystem::path(options.out_dir) / source).string();
+    run.command_line = options.command_line + "  [" + source + "]";
+    LOG(INFO) << "compare: " << source << " guidance → " << run.out_dir;
+    PQ_RETURN_IF_ERROR(RunPipeline(config, run, &reports[source]));
+  }
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& r : kRows) {
+    const auto pick = [&](const char* source) -> nlohmann::json {
+      const auto& stages = reports[source]["stages"];
+      return stages.contains(r.stage) && stages[r.stage].contains(r.metric) ? stages[r.stage][r.metric] : nullptr;
+    };
+    nlohmann::json row = {{"stage", r.stage}, {"metric", r.metric}, {"label", r.label},
+                          {"strain", pick("strain")}, {"curvature", pick("curvature")}};
+    if (row["strain"].is_number() && row["curvature"].is_number() && row["curvature"].get<double>() != 0.0)
+      row["difference_percent"] = 100.0 * (row["strain"].get<double>() / row["curvature"].get<double>() - 1.0);
+    else
+      row["difference_percent"] = nullptr;
+    rows.push_back(row);
+  }
+  *comparison = {{"config_file", options.config_path}, {"overrides", options.overrides}, {"rows", rows}};
+  const std::filesystem::path dir(options.out_dir);
+  PQ_RETURN_IF_ERROR(WriteTextFileAtomically((dir / "compare.json").string(), comparison->dump(2) + "\n"));
+  PQ_RETURN_IF_ERROR(WriteTextFileAtomically((dir / "compare" / "table.md").string(), ComparisonTable(*comparison)));
+  LOG(INFO) << "compare: wrote " << (dir / "compare.json").string() << " and compare/table.md\n" << ComparisonTable(*comparison);
+  return Status::Ok();
+}
+
+}  // namespace pqlayout
