@@ -175,6 +175,38 @@ TEST(Cli, BadInputGivesOneLineExitTwoAndNoOutput) {
   EXPECT_EQ(CountLines(unknown.err), 1) << unknown.err;
 }
 
+TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "dome.yaml",
+                     "surface:\n  generator: dome\n  width: 18\n  depth: 15\n  rise: 4\n  edge_length: 1.0\n"
+                     "layout:\n  spacing: 3.0\n");
+  const Result r = RunPqlayout(dir, "compare dome.yaml --out cmp");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* source : {"strain", "curvature"}) {
+    const auto report = ReadReport(dir + "/cmp/" + source);
+    EXPECT_EQ(report["config"]["guidance"]["source"], source);
+    EXPECT_TRUE(report["stages"].contains("analyze")) << source;
+  }
+  const auto comparison = nlohmann::json::parse(ReadAll(dir + "/cmp/compare.json"));
+  bool has_mean = false;
+  for (const auto& row : comparison["rows"]) {
+    if (row["metric"] != "compliance_node_mean") continue;
+    has_mean = true;
+    EXPECT_GT(row["strain"].get<double>(), 0.0);
+    EXPECT_GT(row["curvature"].get<double>(), 0.0);
+    EXPECT_NEAR(row["difference_percent"].get<double>(),
+                100.0 * (row["strain"].get<double>() / row["curvature"].get<double>() - 1.0), 1e-9);
+  }
+  EXPECT_TRUE(has_mean);
+  const std::string table = ReadAll(dir + "/cmp/compare/table.md");
+  EXPECT_EQ(table.rfind("| metric | strain guidance | curvature guidance | strain vs curvature |", 0), 0u);
+  for (size_t at = 0, line = 0; (at = table.find('\n', at)) != std::string::npos; ++at, ++line) {
+    const size_t start = table.rfind('\n', at - 1);
+    const std::string row = table.substr(start == std::string::npos ? 0 : start + 1, at - (start == std::string::npos ? 0 : start + 1));
+    EXPECT_EQ(std::count(row.begin(), row.end(), '|'), 5) << row;  // well-formed Markdown rows
+  }
+}
+
 TEST(Cli, KeysPrintsTheReference) {
   const auto dir = testing::TempDir();
   const Result r = RunPqlayout(dir, "keys");

@@ -301,7 +301,11 @@ TEST(QuadExtraction, DISABLED_TiesAndCriticalPointsStayManifold) {
     const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
     std::cout << "variant " << variant << ": " << m.n_faces << " faces, quad fraction " << m.quad_fraction
               << ", χ " << m.euler_characteristic << ", rejected " << out.stats.rejected_faces << ", holes "
-              << out.stats.regions_with_holes << ", padded " << out.stats.padded_faces << "\n";
+              << out.stats.regions_with_holes << ", padded " << out.stats.padded_faces << ", loops " << m.boundary_loops << "\n";
+    for (const auto h : out.mesh.halfedges())
+      if (out.mesh.is_boundary(h) && ToEigen(out.mesh.point(out.mesh.from_vertex_handle(h))).norm() < 9.5)
+        std::cout << "  inner boundary edge " << ToEigen(out.mesh.point(out.mesh.from_vertex_handle(h))).transpose() << " -> "
+                  << ToEigen(out.mesh.point(out.mesh.to_vertex_handle(h))).transpose() << "\n";
     EXPECT_EQ(out.stats.rejected_faces, 0) << "variant " << variant;
     for (const auto v : out.mesh.vertices()) EXPECT_TRUE(out.mesh.is_manifold(v)) << "variant " << variant;
     if (out.stats.regions_with_holes == 0) EXPECT_EQ(m.euler_characteristic, 1) << "variant " << variant;
