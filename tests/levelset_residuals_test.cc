@@ -1,7 +1,6 @@
 // Every level-set residual functor: autodiff Jacobians against finite differences
 // (ceres::GradientChecker) at seeded random points, plus known zeros and invariances.
 #include <gtest/gtest.h>
-#include <ceres/gradient_checker.h>
 
 #include <cmath>
 #include <random>
@@ -12,6 +11,7 @@
 #include "problems/residuals/smoothness_residual.h"
 #include "problems/residuals/spacing_residual.h"
 #include "problems/residuals/transversality_residual.h"
+#include "tests/gradient_check.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -50,21 +50,7 @@ Eigen::Matrix3d RandomShapeOperator(const Eigen::Vector3d& n) {
   return P * (A + A.transpose()) * P * 0.1;
 }
 
-// Probes a cost function at the given parameter values.
-void ExpectJacobiansMatchFiniteDifferences(const std::string& name, const ceres::CostFunction* cost,
-                                           std::vector<double> values) {
-  SCOPED_TRACE(name);
-  std::vector<const double*> blocks;
-  for (const double& v : values) blocks.push_back(&v);
-  ceres::NumericDiffOptions options;
-  // Ridders' extrapolation starts from 1 % of |x| by default, too coarse where these
-  // normalised terms curve sharply (small |∇φ|); start from 0.01 % instead.
-  options.ridders_relative_initial_step_size = 1e-4;
-  ceres::GradientChecker checker(cost, static_cast<const std::vector<const ceres::Manifold*>*>(nullptr), options);
-  ceres::GradientChecker::ProbeResults results;
-  EXPECT_TRUE(checker.Probe(blocks.data(), 1e-7, &results)) << results.error_log;
-  delete cost;
-}
+using testing::ExpectJacobiansMatchFiniteDifferences;
 
 std::vector<double> RandomValues(int n) {
   std::vector<double> v(n);

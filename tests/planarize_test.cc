@@ -3,7 +3,6 @@
 // a quad strip on a cylinder (developable: planar strips exist on it) becomes planar while
 // staying on the cylinder.
 #include <gtest/gtest.h>
-#include <ceres/gradient_checker.h>
 
 #include <cmath>
 #include <random>
@@ -14,6 +13,7 @@
 #include "problems/residuals/closeness_residual.h"
 #include "problems/residuals/fairness_residual.h"
 #include "problems/residuals/planarity_residual.h"
+#include "tests/gradient_check.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -39,17 +39,9 @@ TEST(PlanarityDelta, HandComputedValues) {
   EXPECT_EQ(PlanarityDelta({a, b, d2}), 0.0);
 }
 
-void Check(const std::string& name, ceres::CostFunction* cost, std::vector<std::vector<double>> blocks,
+void Check(const std::string& name, ceres::CostFunction* cost, const std::vector<std::vector<double>>& blocks,
            const std::vector<const ceres::Manifold*>* manifolds = nullptr) {
-  SCOPED_TRACE(name);
-  std::vector<const double*> pointers;
-  for (const auto& b : blocks) pointers.push_back(b.data());
-  ceres::NumericDiffOptions options;
-  options.ridders_relative_initial_step_size = 1e-4;
-  ceres::GradientChecker checker(cost, manifolds, options);
-  ceres::GradientChecker::ProbeResults results;
-  EXPECT_TRUE(checker.Probe(pointers.data(), 1e-7, &results)) << results.error_log;
-  delete cost;
+  testing::ExpectJacobiansMatchFiniteDifferences(name, cost, blocks, manifolds);
 }
 
 std::vector<double> RandomBlock(int n) {

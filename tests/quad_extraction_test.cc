@@ -275,64 +275,52 @@ TEST(QuadExtraction, GreatCourtEndToEnd) {
 namespace pqlayout {
 namespace {
 
-// Many ties: φ, ψ rounded to quarter levels, so level lines run through vertices, along
-// edges and over whole flat triangles; and wavy fields with critical points.
-TEST(QuadExtraction, DISABLED_TiesAndCriticalPointsStayManifold) {
-  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
-  for (int variant = 0; variant < 3; ++variant) {
-    std::vector<double> phi, psi;
-    RotatedCoordinates(s, 0.4, 2.0, 0.0, &phi, &psi);
-    for (int v = 0; v < s.num_vertices(); ++v) {
-      const Eigen::Vector3d p = s.position(v);
-      if (variant == 0) {
-        phi[v] = std::round(4.0 * phi[v]) / 4.0;
-        psi[v] = std::round(4.0 * psi[v]) / 4.0;
-      } else if (variant == 1) {
-        phi[v] = std::round(phi[v]);
-        psi[v] = std::round(2.0 * psi[v]) / 2.0;
-      } else {
-        phi[v] += 0.9 * std::sin(0.5 * p.y());
-        psi[v] += 0.9 * std::cos(0.45 * p.x());
-      }
+// φ, ψ with ties (values exactly on levels) or critical points, on the disk.
+ExtractedMesh ExtractVariant(const SurfaceModel& s, int variant) {
+  std::vector<double> phi, psi;
+  RotatedCoordinates(s, 0.4, 2.0, 0.0, &phi, &psi);
+  for (int v = 0; v < s.num_vertices(); ++v) {
+    const Eigen::Vector3d p = s.position(v);
+    if (variant == 0) {  // quarter levels: lines through vertices, along edges, over flat triangles
+      phi[v] = std::round(4.0 * phi[v]) / 4.0;
+      psi[v] = std::round(4.0 * psi[v]) / 4.0;
+    } else if (variant == 1) {  // φ an integer at every vertex: a staircase of plateaus
+      phi[v] = std::round(phi[v]);
+      psi[v] = std::round(2.0 * psi[v]) / 2.0;
+    } else {  // wavy: critical points of φ and ψ
+      phi[v] += 0.9 * std::sin(0.5 * p.y());
+      psi[v] += 0.9 * std::cos(0.45 * p.x());
     }
- ExtractedMesh out;
-    ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.0, &out, false).ok());
-    (void)WriteMesh(out.mesh, "/tmp/extviz/tie" + std::to_string(variant) + ".obj");
-    const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
-    std::cout << "variant " << variant << ": " << m.n_faces << " faces, quad fraction " << m.quad_fraction
-              << ", χ " << m.euler_characteristic << ", rejected " << out.stats.rejected_faces << ", holes "
-              << out.stats.regions_with_holes << ", padded " << out.stats.padded_faces << ", loops " << m.boundary_loops << "\n";
-    for (const auto h : out.mesh.halfedges())
-      if (out.mesh.is_boundary(h) && ToEigen(out.mesh.point(out.mesh.from_vertex_handle(h))).norm() < 9.5)
-        std::cout << "  inner boundary edge " << ToEigen(out.mesh.point(out.mesh.from_vertex_handle(h))).transpose() << " -> "
-                  << ToEigen(out.mesh.point(out.mesh.to_vertex_handle(h))).transpose() << "\n";
-    EXPECT_EQ(out.stats.rejected_faces, 0) << "variant " << variant;
-    for (const auto v : out.mesh.vertices()) EXPECT_TRUE(out.mesh.is_manifold(v)) << "variant " << variant;
-    if (out.stats.regions_with_holes == 0) EXPECT_EQ(m.euler_characteristic, 1) << "variant " << variant;
-    ExpectOriginsReproducePositions(s, out);
+  }
+  ExtractedMesh out;
+  EXPECT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.4, &out).ok());
+  return out;
+}
+
+void ExpectManifoldDisk(const SurfaceModel& s, const ExtractedMesh& out) {
+  const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
+  EXPECT_EQ(out.stats.rejected_faces, 0);
+  EXPECT_EQ(out.stats.regions_with_holes, 0);
+  for (const auto v : out.mesh.vertices()) EXPECT_TRUE(out.mesh.is_manifold(v));
+  EXPECT_EQ(m.euler_characteristic, 1);
+  EXPECT_EQ(m.boundary_loops, 1);
+  ExpectOriginsReproducePositions(s, out);
+}
+
+TEST(QuadExtraction, TiesAndCriticalPointsStayAManifoldDisk) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  for (const int variant : {0, 2}) {
+    SCOPED_TRACE(variant);
+    ExpectManifoldDisk(s, ExtractVariant(s, variant));
   }
 }
 
-}  // namespace
-}  // namespace pqlayout
-namespace pqlayout {
-namespace {
-TEST(QuadExtraction, DISABLED_Scratch) {
-  const SurfaceModel s(ScaledGrid(4, 1.0));
-  std::vector<double> phi, psi;
-  for (int v = 0; v < s.num_vertices(); ++v) {
-    const Eigen::Vector3d p = s.position(v);
-    phi.push_back(std::round(0.7 * p.x()));
-    psi.push_back(0.3 + 0.45 * p.y());
-  }
-  ExtractedMesh out;
-  ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.0, &out, false).ok());
-  for (const auto f : out.mesh.faces()) {
-    std::cout << "face";
-    for (const auto v : out.mesh.fv_range(f)) std::cout << " (" << out.mesh.point(v)[0] << "," << out.mesh.point(v)[1] << ")";
-    std::cout << "\n";
-  }
-  for (int v = 0; v < s.num_vertices(); ++v) std::cout << phi[v] << (v % 5 == 4 ? "\n" : " ");
+// Known limitation: with φ an integer at every vertex (level lines along mesh edges
+// everywhere, plateaus between them) two small holes remain (χ = −1).
+TEST(QuadExtraction, DISABLED_IntegerValuedStaircaseStaysAManifoldDisk) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  ExpectManifoldDisk(s, ExtractVariant(s, 1));
 }
+
 }  // namespace
 }  // namespace pqlayout
