@@ -592,18 +592,6 @@ int ResplitBoundaryTrianglePentagonPairs(Polygons* m) {
   return resplit;
 }
 
-// The loop's output vertices (as loop positions): where the curve changes, and corners.
-std::vector<int> OutputCorners(const std::vector<int>& points, const std::vector<Carrier>& carriers,
-                               const std::vector<CutPoint>& cut) {
-  const size_t n = points.size();
-  std::vector<int> kept;
-  for (size_t k = 0; k < n; ++k) {
-    const Carrier& in = carriers[(k + n - 1) % n];
-    if (in != carriers[k] || cut[points[k]].corner) kept.push_back(int(k));
-  }
-  return kept;
-}
-
 // Loops with fewer than 3 output vertices (a lens cut off by one curve) get extra loop
 // points, boundary points first, each as far as possible from those already kept.
 std::vector<int> Padded(std::vector<int> kept, const std::vector<int>& points, const std::vector<Carrier>& carriers,
@@ -679,11 +667,27 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
     loop_points.push_back(std::move(points));
     loop_carriers.push_back(std::move(carriers));
   }
-  // Output vertices are decided once for all loops, so that two regions along a shared
-  // chain keep the same points (no T-junctions even where ties make the curves ambiguous).
+  // Output vertices are decided once for all loops, topologically: points where three or
+  // more cells meet (the outside of the surface counts as one), and boundary corners. Two
+  // regions along a shared chain thus keep the same points, even where ties make a chain lie
+  // on a φ line and a ψ line at once.
+  std::vector<std::vector<int>> cells_at(cut.size());
+  const auto add_cell = [&](int point, int cell) {
+    auto& cells = cells_at[point];
+    if (std::find(cells.begin(), cells.end(), cell) == cells.end()) cells.push_back(cell);
+  };
+  for (size_t l = 0; l < loop_points.size(); ++l) {
+    const size_t n = loop_points[l].size();
+    for (size_t k = 0; k < n; ++k) {
+      add_cell(loop_points[l][k], static_cast<int>(l));
+      if (loop_carriers[l][k].kind == Carrier::kBoundary) {
+        add_cell(loop_points[l][k], -1);
+        add_cell(loop_points[l][(k + 1) % n], -1);
+      }
+    }
+  }
   std::vector<char> is_output(cut.size(), 0);
-  for (size_t l = 0; l < loop_points.size(); ++l)
-    for (const int k : OutputCorners(loop_points[l], loop_carriers[l], cut)) is_output[loop_points[l][k]] = 1;
+  for (size_t p = 0; p < cut.size(); ++p) is_output[p] = cells_at[p].size() >= 3 || cut[p].corner;
   const auto kept_of = [&](size_t l) {
     std::vector<int> kept;
     for (size_t k = 0; k < loop_points[l].size(); ++k)

@@ -2,10 +2,14 @@
 
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "geometry/atomic_file.h"
+#include "geometry/mesh_io.h"
+#include "problems/figures.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"
 
@@ -42,6 +46,49 @@ std::string Number(const nlohmann::json& v) {
   s.precision(4);
   s << v.get<double>();
   return s.str();
+}
+
+// A finished run's grid shell and nodal compliance, read back from its output folder.
+struct RunResult {
+  std::unique_ptr<SurfaceModel> surface;
+  PolyMesh mesh;
+  std::vector<double> compliance;
+};
+
+Status ReadRun(const std::filesystem::path& dir, RunResult* run) {
+  TriMesh reference;
+  PQ_RETURN_IF_ERROR(ReadSurfaceMesh((dir / "surface.obj").string(), &reference));
+  run->surface = std::make_unique<SurfaceModel>(std::move(reference));
+  PolygonSoup soup;
+  PQ_RETURN_IF_ERROR(ReadPolygonSoup((dir / "quads.obj").string(), &soup));
+  for (const auto& p : soup.points) run->mesh.add_vertex(ToOpenMesh(p));
+  for (const auto& face : soup.faces) {
+    std::vector<VertexHandle> corners;
+    for (const int v : face) corners.emplace_back(v);
+    run->mesh.add_face(corners);
+  }
+  std::ifstream nodes(dir / "analysis" / "nodes.csv");
+  std::string line;
+  std::getline(nodes, line);  // header; compliance is the last column
+  while (std::getline(nodes, line)) run->compliance.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  if (run->compliance.size() != run->mesh.n_vertices())
+    return Status::Internal((dir / "analysis" / "nodes.csv").string() + ": one row per node of quads.obj expected");
+  return Status::Ok();
+}
+
+// figures/compliance_strain.svg and figures/compliance_curvature.svg on one colour scale.
+Status WriteCompareFigures(const std::filesystem::path& dir) {
+  RunResult strain, curvature;
+  PQ_RETURN_IF_ERROR(ReadRun(dir / "strain", &strain));
+  PQ_RETURN_IF_ERROR(ReadRun(dir / "curvature", &curvature));
+  const double shared = std::max(*std::max_element(strain.compliance.begin(), strain.compliance.end()),
+                                 *std::max_element(curvature.compliance.begin(), curvature.compliance.end()));
+  PQ_RETURN_IF_ERROR(WriteComplianceFigure(*strain.surface, strain.mesh, strain.compliance, shared,
+                                           "Nodal compliance, strain-guided layout",
+                                           (dir / "figures" / "compliance_strain.svg").string()));
+  return WriteComplianceFigure(*curvature.surface, curvature.mesh, curvature.compliance, shared,
+                               "Nodal compliance, curvature-guided layout (reference)",
+                               (dir / "figures" / "compliance_curvature.svg").string());
 }
 
 }  // namespace
@@ -97,6 +144,7 @@ Status RunCompare(const CompareOptions& options, nlohmann::json* comparison) {
   const std::filesystem::path dir(options.out_dir);
   PQ_RETURN_IF_ERROR(WriteTextFileAtomically((dir / "compare.json").string(), comparison->dump(2) + "\n"));
   PQ_RETURN_IF_ERROR(WriteTextFileAtomically((dir / "compare" / "table.md").string(), ComparisonTable(*comparison)));
+  PQ_RETURN_IF_ERROR(WriteCompareFigures(dir));
   LOG(INFO) << "compare: wrote " << (dir / "compare.json").string() << " and compare/table.md\n" << ComparisonTable(*comparison);
   return Status::Ok();
 }

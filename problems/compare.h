@@ -1,8 +1,9 @@
 // `pqlayout compare CONFIG`: the same config run twice, with guidance.source = strain (the
 // paper's statics-sensitive layout) and = curvature (the reference layout the paper compares
 // against), same spacing and weights; then a side-by-side table (SPEC "Comparison").
-// Outputs: DIR/strain/ and DIR/curvature/ (complete runs), DIR/compare.json and
-// DIR/compare/table.md.
+// Outputs: DIR/strain/ and DIR/curvature/ (complete runs), DIR/compare.json,
+// DIR/compare/table.md, and DIR/figures/compliance_{strain,curvature}.svg on one colour
+// scale (paper Figs. 9 and 14).
 #pragma once
 
 #include <string>

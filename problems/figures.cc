@@ -345,3 +345,37 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
 }
 
 }  // namespace pqlayout
+
+namespace pqlayout {
+
+Status WriteComplianceFigure(const SurfaceModel& surface, const PolyMesh& mesh,
+                             const std::vector<double>& nodal_compliance, double scale_max,
+                             const std::string& title, const std::string& path, const FigureOptions& options) {
+  PQ_RETURN_IF_ERROR(
+      CheckFinite(nodal_compliance, static_cast<int>(mesh.n_vertices()), "nodal compliance", "node").WithContext(path));
+  const double hi = scale_max > 0.0 ? scale_max
+                                    : *std::max_element(nodal_compliance.begin(), nodal_compliance.end());
+  const ColourScale scale{Viridis, 0.0, hi > 0.0 ? hi : 1.0};
+  SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
+  // Each face filled with the mean compliance of its nodes (paper Fig. 9, 14).
+  for (const auto f : mesh.faces()) {
+    std::vector<Eigen::Vector2d> polygon;
+    double sum = 0.0;
+    for (const auto v : mesh.fv_range(f)) {
+      polygon.push_back(ToEigen(mesh.point(v)).head<2>());
+      sum += nodal_compliance[v.idx()];
+    }
+    canvas.Polygon(polygon, scale.map(std::clamp(scale.T(sum / polygon.size()), 0.0, 1.0)));
+  }
+  std::vector<std::vector<Eigen::Vector2d>> members;
+  for (const auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    members.push_back({ToEigen(mesh.point(mesh.from_vertex_handle(h))).head<2>(),
+                       ToEigen(mesh.point(mesh.to_vertex_handle(h))).head<2>()});
+  }
+  canvas.Polylines(members, Stroke{Rgb{40, 40, 40}, 0.6, 0.9}, false);
+  DrawFrame(surface, scale, "nodal compliance [J]", &canvas);
+  return canvas.Write(path);
+}
+
+}  // namespace pqlayout

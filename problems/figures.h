@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include "geometry/mesh.h"
 #include "geometry/status.h"
 #include "geometry/surface_model.h"
 
@@ -68,5 +69,13 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
                            const std::vector<Eigen::Vector3d>& direction,
                            const std::vector<double>& weight, const std::string& title,
                            const std::string& path, const FigureOptions& options = {});
+
+// Paper Fig. 9/14: top view of the grid shell, each face filled with the mean nodal
+// compliance of its nodes, members drawn as thin dark lines, reference outline, colour bar
+// "nodal compliance [J]" from 0 to scale_max (pass the same value for two layouts to make
+// them comparable; ≤ 0: this layout's own maximum), scale bar, north arrow, title.
+Status WriteComplianceFigure(const SurfaceModel& surface, const PolyMesh& mesh,
+                             const std::vector<double>& nodal_compliance, double scale_max,
+                             const std::string& title, const std::string& path, const FigureOptions& options = {});
 
 }  // namespace pqlayout

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "geometry/field_writers.h"
+#include "problems/figures.h"
 #include "problems/stages.h"
 #include "solver/frame_analysis.h"
 
@@ -143,7 +144,10 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   LOG(INFO) << "analyze: " << model.nodes.size() << " nodes, " << model.members.size() << " members, steel "
             << steel_mass / 1000.0 << " t; compliance " << r.compliance << " J (node mean " << mean << ", max " << max_c
             << "), max |u| " << max_u * 1000.0 << " mm";
-  return WriteAnalysisTables(model, r, out);
+  PQ_RETURN_IF_ERROR(WriteAnalysisTables(model, r, out));
+  return WriteComplianceFigure(*state->surface, state->planarized.mesh, r.nodal_compliance, 0.0,
+                               "Nodal compliance of the grid shell (" + state->config.guidance.source + " guidance)",
+                               out->Path("figures/compliance.svg"));
 }
 
 }  // namespace pqlayout

@@ -11,3 +11,6 @@ rsvg-convert -w 700 out/readme/figures/displacement.svg -o docs/figures/displace
 rsvg-convert -w 700 out/readme/figures/guidance.svg -o docs/figures/guidance.png
 rsvg-convert -w 700 out/readme_curvature/figures/guidance.svg -o docs/figures/guidance_curvature.png
 rsvg-convert -w 700 out/readme/figures/levelsets.svg -o docs/figures/levelsets.png
+build/cli/pqlayout compare examples/great_court.yaml --out out/readme_compare -q
+rsvg-convert -w 600 out/readme_compare/figures/compliance_strain.svg -o docs/figures/compliance_strain.png
+rsvg-convert -w 600 out/readme_compare/figures/compliance_curvature.svg -o docs/figures/compliance_curvature.png

@@ -198,6 +198,12 @@ TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
                 100.0 * (row["strain"].get<double>() / row["curvature"].get<double>() - 1.0), 1e-9);
   }
   EXPECT_TRUE(has_mean);
+  for (const char* figure : {"compliance_strain.svg", "compliance_curvature.svg"}) {
+    const std::string svg = ReadAll(dir + "/cmp/figures/" + figure);
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u) << figure;
+    EXPECT_NE(svg.find("nodal compliance [J]"), std::string::npos) << figure;
+  }
+  EXPECT_TRUE(fs::exists(dir + "/cmp/strain/figures/compliance.svg"));
   const std::string table = ReadAll(dir + "/cmp/compare/table.md");
   EXPECT_EQ(table.rfind("| metric | strain guidance | curvature guidance | strain vs curvature |", 0), 0u);
   for (size_t at = 0, line = 0; (at = table.find('\n', at)) != std::string::npos; ++at, ++line) {
