@@ -7,9 +7,9 @@
 // (Sutherland–Hodgman clipping; φ and ψ are linear on a triangle, so the pieces are convex
 // polygons), each piece labelled by its cell (⌊φ⌋, ⌊ψ⌋) by construction. A face of the
 // output is a connected set of pieces with the same label (joined across shared piece edges);
-// its boundary loop keeps only the output vertices: points where the loop passes from one
-// curve to another (a φ line to a ψ line, a level line to the reference boundary) and
-// boundary corners. Cut points are keyed symbolically, never by position: a reference vertex,
+// its boundary loop keeps only the output vertices: points where three or more cells meet
+// (a φ line crosses a ψ line, a level line meets the reference boundary — the outside counts
+// as a cell) and boundary corners. Cut points are keyed symbolically, never by position: a reference vertex,
 // (reference edge, family, level) or (face, i, j); every decision about a shared point is
 // made from values computed once per key, so neighbouring triangles agree. Ties follow
 // geometry/level_lines.h: a value exactly equal to a level counts as above it.
