@@ -120,7 +120,7 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
   }
   const auto triples = PolylineTriples(mesh);
   const auto& w = options.weights;
-  double planarity_weight = w.planarity;
+  double planarity_weight = w.planarity, closeness_weight = w.closeness, boundary_weight = w.boundary;
   Measure(mesh, extracted->origin, query, report);
   for (report->rounds = 0; report->rounds < options.max_rounds && report->planarity_max > options.target_delta;) {
     ++report->rounds;
@@ -135,10 +135,10 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
     for (int v = 0; v < nv; ++v) {
       const Eigen::Vector3d p(position[3 * v], position[3 * v + 1], position[3 * v + 2]);
       const SurfacePoint c = query.OnSurface(p);
-      problem.AddResidualBlock(ClosenessResidual::Create(c.point, c.normal, w.closeness, h), nullptr, &position[3 * v]);
+      problem.AddResidualBlock(ClosenessResidual::Create(c.point, c.normal, closeness_weight, h), nullptr, &position[3 * v]);
       if (extracted->origin[v].on_boundary && w.boundary > 0.0) {
         const SurfacePoint b = query.OnBoundary(p);
-        problem.AddResidualBlock(BoundaryResidual::Create(b.point, b.tangent, w.boundary, h), nullptr, &position[3 * v]);
+        problem.AddResidualBlock(BoundaryResidual::Create(b.point, b.tangent, boundary_weight, h), nullptr, &position[3 * v]);
       }
     }
     if (w.fairness > 0.0)
@@ -169,6 +169,8 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
               << report->planarity_mean << ", closeness max " << report->closeness_max << " m ("
               << summary.iterations.size() - 1 << " iterations)";
     planarity_weight *= 4.0;
+    closeness_weight *= 2.0;
+    boundary_weight *= 2.0;
   }
   for (int v = 0; v < nv; ++v)
     report->max_displacement = std::max(report->max_displacement, (ToEigen(mesh.point(VertexHandle(v))) - start[v]).norm());
