@@ -93,13 +93,8 @@ TEST(Streamlines, ConstantFieldGivesEvenlySpacedHorizontalLines) {
 }
 
 TEST(Streamlines, RadialFieldOnDiskGivesRadialLines) {
-  TriMesh mesh;
-  GeneratorParams disk;
-  disk.name = "disk";
-  disk.width = 20.0;
-  disk.edge_length = 0.25;
-  ASSERT_TRUE(GenerateSurface(disk, &mesh).ok());
-  const SurfaceModel surface(std::move(mesh));
+  const double edge_length = 0.25;
+  const SurfaceModel surface(testing::GeneratedMesh("disk", 20.0, 0.0, 0.0, edge_length));
   std::vector<Vector3d> radial(surface.num_faces());
   for (int f = 0; f < surface.num_faces(); ++f) radial[f] << Centroid(surface, f).normalized(), 0.0;
   StreamlineOptions options;
@@ -118,7 +113,7 @@ TEST(Streamlines, RadialFieldOnDiskGivesRadialLines) {
     for (const auto& p : line)
       deviation = std::max(deviation, std::abs(u.x() * p.y() - u.y() * p.x()));
   }
-  EXPECT_LT(deviation, 0.1 * disk.edge_length);
+  EXPECT_LT(deviation, 0.1 * edge_length);
   EXPECT_GE(MinDistanceBetweenLines(lines), options.test_ratio * options.separation * (1 - 1e-9));
 }
 
@@ -261,13 +256,7 @@ TEST(LevelLines, LevelsThroughVerticesAndAlongEdgesGiveOneLine) {
 // φ = r/h on a disk: the level lines are closed loops (first point == last point) of radius
 // i·h up to the P1 interpolation error, counter-clockwise (along n × ∇r, n = +z).
 TEST(LevelLines, RadialFunctionOnDiskGivesClosedCircles) {
-  TriMesh mesh;
-  GeneratorParams disk;
-  disk.name = "disk";
-  disk.width = 20.0;
-  disk.edge_length = 0.5;
-  ASSERT_TRUE(GenerateSurface(disk, &mesh).ok());
-  const SurfaceModel surface(std::move(mesh));
+  const SurfaceModel surface(testing::GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.5));
   const double h = 2.0;
   double longest_edge = 0.0;
   for (const auto e : surface.mesh().edges())
