@@ -15,7 +15,7 @@ namespace {
 struct StageEntry {
   Stage stage;
   const char* name;
-  StageFunction run;  // nullptr: not implemented in this version
+  StageFunction run;
 };
 
 // The pipeline in order. Adding a stage = one file + its line here.
@@ -81,14 +81,9 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
              {"stages", nlohmann::json::object()}};
   PipelineState state;
   state.config = config;
-  nlohmann::json completed = nlohmann::json::array(), not_implemented = nlohmann::json::array();
+  nlohmann::json completed = nlohmann::json::array();
   for (const auto& entry : kStages) {
     if (static_cast<int>(entry.stage) > static_cast<int>(options.until)) break;
-    if (!entry.run) {
-      not_implemented.push_back(entry.name);
-      continue;
-    }
-    if (!not_implemented.empty()) break;  // a later stage needs the missing one's results
     LOG(INFO) << entry.name << ": started";
     const auto stage_start = std::chrono::steady_clock::now();
     nlohmann::json metrics = nlohmann::json::object();
@@ -98,12 +93,7 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     completed.push_back(entry.name);
     LOG(INFO) << entry.name << ": done in " << metrics["seconds"].get<double>() << " s";
   }
-  if (!not_implemented.empty()) {
-    LOG(WARNING) << "stage '" << not_implemented[0].get<std::string>() << "' and later are not implemented in pqlayout "
-                 << GetBuildInfo().version << "; the run stops after '" << completed.back().get<std::string>() << "'";
-  }
   (*report)["run"]["completed_stages"] = completed;
-  (*report)["run"]["stages_not_implemented"] = not_implemented;
   (*report)["run"]["total_seconds"] = SecondsSince(run_start);
   PQ_RETURN_IF_ERROR(out->WriteText("report.json", report->dump(2) + "\n"));
   PQ_RETURN_IF_ERROR(WriteReportHtml(*report, out.get()));

@@ -50,8 +50,7 @@ struct RunOptions {
   std::string command_line;         // for the report
 };
 
-// Runs the stages up to options.until. Stages not implemented in this version end the run
-// early with a note (in the log and in report.json `stages_not_implemented`).
+// Runs the stages up to options.until.
 // On success the outputs and report.json are in options.out_dir and *report holds the report.
 Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::json* report);
 
