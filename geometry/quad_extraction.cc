@@ -517,6 +517,34 @@ int DropIdleBoundaryVertices(Polygons* m) {
   return dropped;
 }
 
+// How far a polygon is from degenerate: the smallest of its interior angles and of their
+// supplements (a corner of nearly 180° makes a quad a triangle with an extra point), in the
+// plane with the given normal; negative where a corner is reflex.
+double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon,
+                  const Eigen::Vector3d& normal) {
+  double smallest = M_PI;
+  const size_t n = polygon.size();
+  for (size_t k = 0; k < n; ++k) {
+    const Eigen::Vector3d p = position[polygon[k]];
+    const Eigen::Vector3d in = p - position[polygon[(k + n - 1) % n]], out = position[polygon[(k + 1) % n]] - p;
+    const double turn = std::atan2(in.cross(out).dot(normal), in.dot(out));
+    smallest = std::min({smallest, M_PI - turn, turn});
+  }
+  return smallest;
+}
+
+Eigen::Vector3d NewellNormal(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon) {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < polygon.size(); ++k)
+    normal += position[polygon[k]].cross(position[polygon[(k + 1) % polygon.size()]]);
+  return normal.norm() > 0.0 ? Eigen::Vector3d(normal.normalized()) : normal;
+}
+
+double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon) {
+  const Eigen::Vector3d normal = NewellNormal(position, polygon);
+  return normal.norm() > 0.0 ? ShapeAngle(position, polygon, normal) : -1.0;
+}
+
 // Along a boundary crossed obliquely by both families the boundary cells alternate between
 // triangles and pentagons. A triangle and a pentagon sharing a curve segment that ends on the
 // boundary form a hexagon, which is re-split into two quads by the diagonal that gives the
@@ -554,22 +582,9 @@ int ResplitBoundaryTrianglePentagonPairs(Polygons* m) {
     const size_t start2 = std::find(face2.begin(), face2.end(), a) - face2.begin();
     for (size_t k = 1; k + 1 < n2; ++k) hexagon.push_back(face2[(start2 + k) % n2]);
     if (hexagon.size() != 6 || std::set<int>(hexagon.begin(), hexagon.end()).size() != 6) continue;
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // Newell
-    for (int k = 0; k < 6; ++k) normal += m->position[hexagon[k]].cross(m->position[hexagon[(k + 1) % 6]]);
+    const Eigen::Vector3d normal = NewellNormal(m->position, hexagon);
     if (!(normal.norm() > 0.0)) continue;
-    normal.normalize();
-    // How far the quad is from degenerate: the smallest of its interior angles and their
-    // supplements (a corner of nearly 180° makes it a triangle with an extra point).
-    const auto min_angle = [&](const std::vector<int>& quad) {
-      double smallest = M_PI;
-      for (int k = 0; k < 4; ++k) {
-        const Eigen::Vector3d p = m->position[quad[k]];
-        const Eigen::Vector3d in = p - m->position[quad[(k + 3) % 4]], out = m->position[quad[(k + 1) % 4]] - p;
-        const double turn = std::atan2(in.cross(out).dot(normal), in.dot(out));
-        smallest = std::min({smallest, M_PI - turn, turn});
-      }
-      return smallest;
-    };
+    const auto min_angle = [&](const std::vector<int>& quad) { return ShapeAngle(m->position, quad, normal); };
     for (int s = 0; s < 3; ++s) {
       const int p = hexagon[s], q = hexagon[s + 3];
       if (has_edge(p, q) || (m->origin[p].on_boundary && m->origin[q].on_boundary)) continue;
@@ -590,6 +605,176 @@ int ResplitBoundaryTrianglePentagonPairs(Polygons* m) {
     ++resplit;
   }
   return resplit;
+}
+
+// Where two curves cross just inside the boundary, the corner they cut off is a boundary
+// triangle (A, B on the boundary, X the crossing) between two boundary cells of five or more
+// sides. Moving the crossing onto the boundary (X and B merged into A, or X and A into B,
+// whichever gives the better-shaped faces, every quad angle within [min_angle, 180° −
+// min_angle]) removes the triangle and makes both neighbours one side shorter: a triangle and
+// two pentagons become two quads. Boundary corners are never merged away.
+int CollapseBoundaryTriangles(double min_angle, Polygons* m) {
+  std::map<std::pair<int, int>, int> face_of_halfedge;
+  std::vector<std::vector<int>> faces_of(m->position.size());
+  for (size_t f = 0; f < m->faces.size(); ++f) {
+    const auto& face = m->faces[f];
+    for (size_t k = 0; k < face.size(); ++k) {
+      face_of_halfedge[{face[k], face[(k + 1) % face.size()]}] = int(f);
+      faces_of[face[k]].push_back(int(f));
+    }
+  }
+  std::vector<char> on_boundary(m->position.size(), 0);
+  for (const auto& [halfedge, f] : face_of_halfedge)
+    if (!face_of_halfedge.count({halfedge.second, halfedge.first})) on_boundary[halfedge.first] = on_boundary[halfedge.second] = 1;
+  struct Candidate {
+    double score;
+    int triangle;
+    std::vector<int> affected;
+    std::vector<std::vector<int>> replaced;
+  };
+  std::vector<Candidate> candidates;
+  for (size_t t = 0; t < m->faces.size(); ++t) {
+    const auto& tri = m->faces[t];
+    if (tri.size() != 3) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = tri[k], b = tri[(k + 1) % 3], x = tri[(k + 2) % 3];
+      if (face_of_halfedge.count({b, a}) || on_boundary[x]) continue;  // A–B on the boundary, X inside
+      const auto across_a = face_of_halfedge.find({a, x}), across_b = face_of_halfedge.find({x, b});
+      if (across_a == face_of_halfedge.end() || across_b == face_of_halfedge.end()) continue;
+      if (m->faces[across_a->second].size() < 5 || m->faces[across_b->second].size() < 5) continue;
+      std::vector<int> affected;
+      for (const int v : {a, b, x})
+        for (const int f : faces_of[v])
+          if (f != int(t) && std::find(affected.begin(), affected.end(), f) == affected.end()) affected.push_back(f);
+      for (const auto [keep, drop] : {std::pair<int, int>{a, b}, std::pair<int, int>{b, a}}) {
+        if (m->origin[drop].corner) continue;
+        Candidate c{M_PI, int(t), affected, {}};
+        std::set<std::pair<int, int>> halfedges;
+        bool valid = true;
+        for (const int f : affected) {
+          std::vector<int> mapped;
+          for (const int v : m->faces[f]) {
+            const int w = (v == x || v == drop) ? keep : v;
+            if (mapped.empty() || mapped.back() != w) mapped.push_back(w);
+          }
+          while (mapped.size() > 1 && mapped.back() == mapped.front()) mapped.pop_back();
+          valid &= mapped.size() >= 3 && std::set<int>(mapped.begin(), mapped.end()).size() == mapped.size();
+          for (size_t i = 0; valid && i < mapped.size(); ++i) {
+            const std::pair<int, int> h{mapped[i], mapped[(i + 1) % mapped.size()]};
+            const auto existing = face_of_halfedge.find(h);
+            valid &= halfedges.insert(h).second &&
+                     (existing == face_of_halfedge.end() ||
+                      std::find(affected.begin(), affected.end(), existing->second) != affected.end());
+          }
+          if (valid && mapped.size() <= 4) c.score = std::min(c.score, ShapeAngle(m->position, mapped));
+          c.replaced.push_back(std::move(mapped));
+        }
+        if (valid && c.score >= min_angle) candidates.push_back(std::move(c));
+      }
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
+  std::vector<char> used(m->faces.size(), 0), removed(m->faces.size(), 0);
+  int collapsed = 0;
+  for (const Candidate& c : candidates) {
+    bool free = !used[c.triangle];
+    for (const int f : c.affected) free &= !used[f];
+    if (!free) continue;
+    used[c.triangle] = removed[c.triangle] = 1;
+    for (size_t i = 0; i < c.affected.size(); ++i) {
+      used[c.affected[i]] = 1;
+      m->faces[c.affected[i]] = c.replaced[i];
+    }
+    ++collapsed;
+  }
+  std::vector<std::vector<int>> faces;
+  for (size_t f = 0; f < m->faces.size(); ++f)
+    if (!removed[f]) faces.push_back(std::move(m->faces[f]));
+  m->faces = std::move(faces);
+  return collapsed;
+}
+
+// Every way to cut a polygon with an even number of sides into quads by non-crossing
+// diagonals (each diagonal leaves an even number of sides on both sides).
+void Quadrangulations(const std::vector<int>& polygon, std::vector<std::vector<std::vector<int>>>* out) {
+  const size_t n = polygon.size();
+  if (n == 4) {
+    out->push_back({polygon});
+    return;
+  }
+  // The quad containing edge (0, 1) is (0, 1, i, j), i even, j − i odd; the rest are the
+  // polygons (1 … i), (i … j) and (j … n − 1, 0), each an edge or even-sided.
+  for (size_t i = 2; i < n; i += 2)
+    for (size_t j = i + 1; j < n; j += 2) {
+      const std::vector<int> quad{polygon[0], polygon[1], polygon[i], polygon[j]};
+      std::vector<std::vector<std::vector<int>>> left{{}}, right{{}};
+      if (i > 2) {
+        left.clear();
+        Quadrangulations(std::vector<int>(polygon.begin() + 1, polygon.begin() + i + 1), &left);
+      }
+      if (j > i + 1) {
+        right.clear();
+        Quadrangulations(std::vector<int>(polygon.begin() + i, polygon.begin() + j + 1), &right);
+      }
+      std::vector<int> rest{polygon[0]};
+      for (size_t k = j; k < n; ++k) rest.push_back(polygon[k]);
+      std::vector<std::vector<std::vector<int>>> tail{{}};
+      if (rest.size() > 2) {
+        tail.clear();
+        Quadrangulations(rest, &tail);
+      }
+      for (const auto& l : left)
+        for (const auto& r : right)
+          for (const auto& t : tail) {
+            std::vector<std::vector<int>> quads{quad};
+            quads.insert(quads.end(), l.begin(), l.end());
+            quads.insert(quads.end(), r.begin(), r.end());
+            quads.insert(quads.end(), t.begin(), t.end());
+            out->push_back(std::move(quads));
+          }
+    }
+}
+
+// A cell that touches no boundary and has 6 or 8 sides (where the curves fan out around a
+// singularity of the guidance) is cut into 2 or 3 quads by the diagonals that give the
+// best-shaped quads, if every quad angle is within [min_angle, 180° − min_angle]. The
+// singularity then becomes a vertex of valence 3 or 5, as in any quad mesh.
+int SplitInteriorEvenPolygons(double min_angle, Polygons* m) {
+  std::set<std::pair<int, int>> halfedges;
+  for (const auto& face : m->faces)
+    for (size_t k = 0; k < face.size(); ++k) halfedges.insert({face[k], face[(k + 1) % face.size()]});
+  std::vector<char> on_boundary(m->position.size(), 0);
+  for (const auto& [a, b] : halfedges)
+    if (!halfedges.count({b, a})) on_boundary[a] = on_boundary[b] = 1;
+  std::vector<std::vector<int>> faces;
+  int split = 0;
+  for (auto& face : m->faces) {
+    bool interior = face.size() == 6 || face.size() == 8;
+    for (const int v : face) interior &= !on_boundary[v];
+    std::vector<std::vector<std::vector<int>>> options;
+    if (interior) Quadrangulations(face, &options);
+    double best_score = min_angle;
+    const std::vector<std::vector<int>>* best = nullptr;
+    for (const auto& quads : options) {
+      double score = M_PI;
+      for (const auto& quad : quads) {
+        score = std::min(score, ShapeAngle(m->position, quad));
+        for (size_t k = 0; k < 4; ++k)  // a diagonal that is already an edge would double it
+          if (!CyclicallyAdjacent(face, quad[k], quad[(k + 1) % 4]) &&
+              (halfedges.count({quad[k], quad[(k + 1) % 4]}) || halfedges.count({quad[(k + 1) % 4], quad[k]})))
+            score = -1.0;
+      }
+      if (score >= best_score) best_score = score, best = &quads;
+    }
+    if (best == nullptr) {
+      faces.push_back(std::move(face));
+      continue;
+    }
+    for (const auto& quad : *best) faces.push_back(quad);
+    ++split;
+  }
+  m->faces = std::move(faces);
+  return split;
 }
 
 // Loops with fewer than 3 output vertices (a lens cut off by one curve) get extra loop
@@ -723,7 +908,11 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
     while (const int collapsed = CollapseRound(min_edge_length, &polygons)) out->stats.collapsed_edges += collapsed;
   }
   out->stats.dropped_boundary_vertices = DropIdleBoundaryVertices(&polygons);
-  if (pair_boundary_triangles) out->stats.resplit_boundary_pairs = ResplitBoundaryTrianglePentagonPairs(&polygons);
+  if (pair_boundary_triangles) {
+    out->stats.resplit_boundary_pairs = ResplitBoundaryTrianglePentagonPairs(&polygons);
+    out->stats.collapsed_boundary_triangles = CollapseBoundaryTriangles(kMinResplitAngle, &polygons);
+    out->stats.split_interior_polygons = SplitInteriorEvenPolygons(kMinResplitAngle, &polygons);
+  }
   Compact(&polygons);
 
   PolyMesh& mesh = out->mesh;

@@ -59,6 +59,8 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"interior_non_quads", non_quads},
           {"collapsed_edges", stats.collapsed_edges},
           {"resplit_boundary_pairs", stats.resplit_boundary_pairs},
+          {"collapsed_boundary_triangles", stats.collapsed_boundary_triangles},
+          {"split_interior_polygons", stats.split_interior_polygons},
           {"dropped_boundary_vertices", stats.dropped_boundary_vertices},
           {"regions_with_holes", stats.regions_with_holes},
           {"rejected_faces", stats.rejected_faces}};
