@@ -74,7 +74,7 @@ struct LayoutOptions {
 // area integrals of dimensionless quantities, so the weights carry over to other roofs.
 struct LevelsetWeights {
   double alignment = 10.0;        // φ's level lines follow the guidance
-  double spacing = 3.0;           // h|∇φ| = 1 and h|∇ψ| = 1
+  double spacing = 5.0;           // h|∇φ| = 1 and h|∇ψ| = 1
   double smoothness = 0.01;       // h² × gradient jump per unit length across interior edges
   double conjugacy = 0.1;         // II(n×∇φ, n×∇ψ) = 0
   double transversality = 100.0;  // crossing angle ≥ levelset.min_angle, no fold-overs
@@ -85,6 +85,7 @@ struct LevelsetOptions {
   double min_angle = 30.0;  // minimum crossing angle of the two families, degrees
   int max_iterations = 50;    // Ceres iterations of the φ solve and of the ψ solve
   int joint_iterations = 300; // Ceres iterations of the final joint solve (0: none)
+  double working_edge = 0.0;  // edge length of the mesh φ, ψ are solved on, m (0: h/2); a finer reference is remeshed
 };
 
 struct ExtractOptions {

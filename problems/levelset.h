@@ -29,6 +29,8 @@ struct LevelSetMetrics {
   double spacing_cv_psi_strong = 0.0;
   double conjugacy_rms = 0.0;             // RMS normalised conjugacy t̂1ᵀ S̃ t̂2 / κ̃ (conjugacy_rms)
   double min_crossing_angle_deg = 0.0;    // (min_crossing_angle_deg)
+  int faces_below_min_angle = 0;          // faces crossing below levelset.min_angle (faces_below_min_angle)
+  double area_below_min_angle = 0.0;      // their share of the area (area_fraction_below_min_angle)
   int foldovers = 0;                      // faces with n·(∇φ × ∇ψ) ≤ 0 (foldovers)
   nlohmann::json ToJson() const;
 };
@@ -37,7 +39,8 @@ struct LevelSetSolution {
   std::vector<double> phi, psi;  // per vertex; level lines at multiples of h
   LevelSetMetrics initial;       // of the Poisson initial guess
   LevelSetMetrics metrics;       // of the result
-  nlohmann::json solver;         // Ceres summaries of the two solves
+  nlohmann::json solver;         // Ceres summaries of the solves
+  int working_faces = 0;         // triangles of the mesh the solve ran on
 };
 
 Status SolveLevelSets(const SurfaceModel& surface, const GuidanceField& guidance, const LevelsetOptions& options,
@@ -45,6 +48,7 @@ Status SolveLevelSets(const SurfaceModel& surface, const GuidanceField& guidance
 
 // The metrics of any pair (φ, ψ), e.g. for tests or another layout.
 LevelSetMetrics MeasureLevelSets(const SurfaceModel& surface, const GuidanceField& guidance,
-                                 const std::vector<double>& phi, const std::vector<double>& psi, double spacing);
+                                 const std::vector<double>& phi, const std::vector<double>& psi,
+                                 double min_angle_deg = 30.0);
 
 }  // namespace pqlayout

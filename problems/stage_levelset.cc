@@ -6,9 +6,11 @@
 #include <numeric>
 #include <queue>
 
+#include "geometry/closest_point.h"
 #include "geometry/differential_operators.h"
 #include "geometry/field_writers.h"
 #include "geometry/principal_directions.h"
+#include "geometry/remesh.h"
 #include "problems/figures.h"
 #include "problems/levelset.h"
 #include "problems/residuals/alignment_residual.h"
@@ -325,6 +327,8 @@ nlohmann::json LevelSetMetrics::ToJson() const {
           {"spacing_cv_psi_weight_above_half", spacing_cv_psi_strong},
           {"conjugacy_rms", conjugacy_rms},
           {"min_crossing_angle_deg", min_crossing_angle_deg},
+          {"faces_below_min_angle", faces_below_min_angle},
+          {"area_fraction_below_min_angle", area_below_min_angle},
           {"foldovers", foldovers}};
 }
 
@@ -346,7 +350,7 @@ double SpacingCv(const SurfaceModel& s, const std::vector<Eigen::Vector3d>& grad
 }
 
 LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g,
-                        const std::vector<double>& phi, const std::vector<double>& psi) {
+                        const std::vector<double>& phi, const std::vector<double>& psi, double min_angle_deg) {
   LevelSetMetrics m;
   std::vector<Eigen::Vector3d> gphi(s.num_faces()), gpsi(s.num_faces());
   std::vector<char> all(s.num_faces(), 1), strong(s.num_faces(), 0);
@@ -368,6 +372,7 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
     if (std::isfinite(c)) conj += s.face_area(f) * c * c;
     const double crossing = std::acos(std::min(1.0, std::abs(t1.dot(t2)))) * kDegrees;
     if (std::isfinite(crossing)) m.min_crossing_angle_deg = std::min(m.min_crossing_angle_deg, crossing);
+    if (!(crossing >= min_angle_deg)) ++m.faces_below_min_angle, m.area_below_min_angle += s.face_area(f);
     if (!(n.dot(gphi[f].cross(gpsi[f])) > 0.0)) ++m.foldovers;
   }
   m.alignment_rms_deg = align_w > 0 ? std::sqrt(align / align_w) : 0.0;
@@ -377,18 +382,23 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
   m.spacing_cv_phi_strong = SpacingCv(s, gphi, strong);
   m.spacing_cv_psi_strong = SpacingCv(s, gpsi, strong);
   m.conjugacy_rms = std::sqrt(conj / s.total_area());
+  m.area_below_min_angle /= s.total_area();
   return m;
 }
 
 }  // namespace
 
 LevelSetMetrics MeasureLevelSets(const SurfaceModel& surface, const GuidanceField& guidance,
-                                 const std::vector<double>& phi, const std::vector<double>& psi, double spacing) {
-  return Measure(surface, Precompute(surface), guidance, phi, psi);
+                                 const std::vector<double>& phi, const std::vector<double>& psi,
+                                 double min_angle_deg) {
+  return Measure(surface, Precompute(surface), guidance, phi, psi, min_angle_deg);
 }
 
-Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
-                      LevelSetSolution* solution) {
+namespace {
+
+// The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
+Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
+                   LevelSetSolution* solution) {
   const LevelSetGeometry geo = Precompute(s);
   const std::vector<InteriorEdge> edges = InteriorEdges(s, geo);
   const auto& w = options.weights;
@@ -404,7 +414,7 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   PQ_RETURN_IF_ERROR(SmallestEigenvector(s, geo, g, edges, h, w, &solution->phi));
   PQ_RETURN_IF_ERROR(PoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
                                 std::vector<double>(s.num_faces(), 1.0), &solution->psi));
-  solution->initial = Measure(s, geo, g, solution->phi, solution->psi);
+  solution->initial = Measure(s, geo, g, solution->phi, solution->psi, options.min_angle);
 
   std::vector<double>& phi = solution->phi;
   std::vector<double>& psi = solution->psi;
@@ -457,7 +467,89 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
     PQ_RETURN_IF_ERROR(Solve("joint", options.joint_iterations, &joint_problem, &solution->solver["joint"]));
   }
 
-  solution->metrics = Measure(s, geo, g, phi, psi);
+  solution->metrics = Measure(s, geo, g, phi, psi, options.min_angle);
+  return Status::Ok();
+}
+
+// Barycentric coordinates of p's projection onto the plane of triangle f of s, in the order of
+// face_vertices; not clamped, so that outside the triangle a P1 function extends linearly.
+Eigen::Vector3d Barycentric(const SurfaceModel& s, int f, const Eigen::Vector3d& p) {
+  const auto ids = s.face_vertices(f);
+  const Eigen::Vector3d a = s.position(ids[0]), b = s.position(ids[1]), c = s.position(ids[2]);
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  const double area2 = n.squaredNorm();
+  if (!(area2 > 0.0)) return Eigen::Vector3d(1.0, 0.0, 0.0);
+  return Eigen::Vector3d((c - b).cross(p - b).dot(n), (a - c).cross(p - c).dot(n), (b - a).cross(p - a).dot(n)) /
+         area2;
+}
+
+// The guidance on the working mesh: each working face takes the direction (projected into
+// its plane) and weight of the reference face closest to its centroid.
+GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceField& g, const SurfaceModel& working) {
+  const ClosestPointQuery query(reference);
+  GuidanceField out;
+  out.scale = g.scale;
+  for (int f = 0; f < working.num_faces(); ++f) {
+    const auto ids = working.face_vertices(f);
+    const Eigen::Vector3d centroid =
+        (working.position(ids[0]) + working.position(ids[1]) + working.position(ids[2])) / 3.0;
+    const int r = query.OnSurface(centroid).element;
+    const Eigen::Vector3d& n = working.face_normal(f);
+    Eigen::Vector3d d = g.direction[r] - g.direction[r].dot(n) * n;
+    d = d.norm() > 0.0 ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d(n.unitOrthogonal());
+    out.direction.push_back(d);
+    out.major.push_back(g.major[r]);
+    out.minor.push_back(g.minor[r]);
+    out.magnitude.push_back(g.magnitude[r]);
+    out.weight.push_back(g.weight[r]);
+  }
+  return out;
+}
+
+constexpr double kWorkingCornerAngle = 30.0;  // corners the working mesh keeps (extract.corner_angle's default)
+constexpr double kReuseReference = 0.7;       // solve on the reference if its mean edge ≥ this × working edge
+
+}  // namespace
+
+Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
+                      LevelSetSolution* solution) {
+  const double working_edge = options.working_edge > 0.0 ? options.working_edge : 0.5 * h;
+  const double reference_edge = MeanEdgeLength(s.mesh());
+  if (reference_edge >= kReuseReference * working_edge) {
+    solution->working_faces = s.num_faces();
+    return SolveOnMesh(s, g, options, h, solution);
+  }
+  // A reference much finer than the layout needs: solve on a remeshed copy whose edges are
+  // working_edge long (the level lines are h apart, so h/2 resolves them), then interpolate
+  // φ and ψ to the reference's vertices. Stage time then follows h, not the reference size.
+  TriMesh working_mesh;
+  PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, 5, &working_mesh)
+                         .WithContext("levelset working mesh"));
+  const SurfaceModel working(std::move(working_mesh));
+  LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference << " × working edge "
+            << working_edge << " m: solving on a remeshed copy with " << working.num_faces() << " triangles";
+  LevelSetSolution coarse;
+  PQ_RETURN_IF_ERROR(SolveOnMesh(working, TransferGuidance(s, g, working), options, h, &coarse));
+  const ClosestPointQuery query(working);
+  solution->phi.assign(s.num_vertices(), 0.0);
+  solution->psi.assign(s.num_vertices(), 0.0);
+  for (int v = 0; v < s.num_vertices(); ++v) {
+    const SurfacePoint p = query.OnSurface(s.position(v));
+    const Eigen::Vector3d w = Barycentric(working, p.element, s.position(v));
+    const auto ids = working.face_vertices(p.element);
+    for (int k = 0; k < 3; ++k) {
+      solution->phi[v] += w[k] * coarse.phi[ids[k]];
+      solution->psi[v] += w[k] * coarse.psi[ids[k]];
+    }
+  }
+  // The metrics are those of the solve, on the working mesh: on the reference, a small
+  // triangle straddling a kink of the working mesh's piecewise linear φ gets a blend of the
+  // two gradients, which says nothing about the layout but would dominate the minimum
+  // crossing angle and inflate the spacing CV.
+  solution->initial = coarse.initial;
+  solution->metrics = coarse.metrics;
+  solution->solver = coarse.solver;
+  solution->working_faces = working.num_faces();
   return Status::Ok();
 }
 
@@ -475,12 +567,14 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   *metrics = solution.metrics.ToJson();
   (*metrics)["initial_guess"] = solution.initial.ToJson();
   (*metrics)["ceres"] = solution.solver;
+  (*metrics)["working_mesh_triangles"] = solution.working_faces;
   PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
   PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
   const auto& m = solution.metrics;
   LOG(INFO) << "levelset: alignment " << m.alignment_rms_deg << "° RMS (" << m.alignment_rms_deg_strong
             << "° where weight > 0.5), spacing CV φ " << m.spacing_cv_phi << " ψ " << m.spacing_cv_psi
-            << ", conjugacy " << m.conjugacy_rms << ", min crossing " << m.min_crossing_angle_deg << "°, "
+            << ", conjugacy " << m.conjugacy_rms << ", min crossing " << m.min_crossing_angle_deg << "° ("
+            << m.faces_below_min_angle << " faces below " << state->config.levelset.min_angle << "°), "
             << m.foldovers << " fold-overs";
   PQ_RETURN_IF_ERROR(WriteLevelSetFigure(surface, solution.phi, solution.psi, state->config.layout.spacing,
                                          state->guidance.direction, state->guidance.weight,
