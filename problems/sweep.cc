@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <mutex>
 #include <set>
@@ -255,6 +256,24 @@ std::string ShellQuote(const std::string& arg) {
   return quoted + "'";
 }
 
+// A run killed while writing leaves its staging folder (.<name>.partial-<pid>, see
+// OutputFiles) beside its folder; the sweep that reruns it removes it.
+void RemoveStaleStaging(const fs::path& folder) {
+  const std::string prefix = "." + folder.filename().string() + ".partial-";
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(folder.parent_path(), ec))
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) stale.push_back(entry.path());
+  for (const auto& path : stale) fs::remove_all(path, ec);
+}
+
+// Progress lines reach a log file (or a job scheduler's) as each run finishes, even if
+// the sweep is killed later.
+void FlushProgress() {
+  std::cout.flush();
+  std::fflush(stdout);
+}
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -489,6 +508,7 @@ Status RunSweep(const SweepPlan& plan, const std::string& executable, int jobs, 
   LOG(INFO) << "sweep: " << summary->total << " runs, " << summary->skipped << " already finished, "
             << todo.size() << " to run, " << std::min<size_t>(std::max(jobs, 1), std::max<size_t>(todo.size(), 1))
             << " at a time";
+  FlushProgress();
   std::atomic<size_t> next{0};
   std::mutex mutex;
   Status internal = Status::Ok();
@@ -498,6 +518,7 @@ Status RunSweep(const SweepPlan& plan, const std::string& executable, int jobs, 
       const fs::path folder = RunFolder(plan, run);
       std::error_code ec;
       fs::create_directories(folder, ec);
+      RemoveStaleStaging(folder);
       const auto start = std::chrono::steady_clock::now();
       std::string error;
       const int status = RunChild(executable, RunArguments(plan, run), (folder / "run.log").string(), &error);
@@ -528,6 +549,7 @@ Status RunSweep(const SweepPlan& plan, const std::string& executable, int jobs, 
         ++summary->failed;
         LOG(WARNING) << prefix << run.name << ": failed: " << run_error;
       }
+      FlushProgress();
     }
   };
   std::vector<std::thread> threads;

@@ -23,7 +23,9 @@ constexpr double kTitleFont = 20.0, kLabelFont = 14.0, kTickFont = 12.0, kPointF
 constexpr double kDominatedRadius = 4.5, kFrontRadius = 6.0;
 const Rgb kFront{214, 39, 40};      // highlighted: the Pareto front
 const Rgb kDominated{150, 150, 150};
+const Rgb kDominatedText{110, 110, 110};
 const Rgb kGrid{225, 225, 225};
+constexpr size_t kMaxLabelledPoints = 30;  // more: only the front is labelled
 
 std::string Escape(const std::string& text) {
   std::string out;
@@ -140,19 +142,26 @@ void DrawPanel(std::ostringstream& s, const ScatterPanel& panel, double left, do
       s << " H" << Fixed(px(best[i]->x)) << " V" << Fixed(py(best[i]->y));
     s << "\" fill=\"none\" stroke=\"" << kFront.Hex() << "\" stroke-width=\"1.5\" stroke-dasharray=\"5 4\"/>\n";
   }
+  // Labels left of points in the right half, so they stay inside the plot; dominated points
+  // are labelled in grey while there are few enough points to read them.
+  const auto label = [&](const ScatterPoint& p, double size, const std::string& colour) {
+    const bool right_half = px(p.x) > x0 + w / 2;
+    TextAt(s, px(p.x) + (right_half ? -9 : 9), py(p.y) - 6, p.label, size, right_half ? "end" : "start",
+           " fill=\"" + colour + "\"");
+  };
   for (size_t i = 0; i < panel.points.size(); ++i) {
     if (front[i]) continue;
-    s << "<circle cx=\"" << Fixed(px(panel.points[i].x)) << "\" cy=\"" << Fixed(py(panel.points[i].y)) << "\" r=\""
-      << kDominatedRadius << "\" fill=\"white\" stroke=\"" << kDominated.Hex() << "\" stroke-width=\"1.5\"><title>"
-      << Escape(panel.points[i].label) << "</title></circle>\n";
+    const ScatterPoint& p = panel.points[i];
+    s << "<circle cx=\"" << Fixed(px(p.x)) << "\" cy=\"" << Fixed(py(p.y)) << "\" r=\"" << kDominatedRadius
+      << "\" fill=\"white\" stroke=\"" << kDominated.Hex() << "\" stroke-width=\"1.5\"><title>" << Escape(p.label)
+      << "</title></circle>\n";
+    if (panel.points.size() <= kMaxLabelledPoints) label(p, kPointFont - 1, kDominatedText.Hex());
   }
   for (const ScatterPoint* p : best) {
     s << "<circle cx=\"" << Fixed(px(p->x)) << "\" cy=\"" << Fixed(py(p->y)) << "\" r=\"" << kFrontRadius
       << "\" fill=\"" << kFront.Hex() << "\" stroke=\"" << SvgStyle::kInk << "\" stroke-width=\"0.8\"><title>"
       << Escape(p->label) << "</title></circle>\n";
-    // Labels left of points in the right half, so they stay inside the plot.
-    const bool right_half = px(p->x) > x0 + w / 2;
-    TextAt(s, px(p->x) + (right_half ? -9 : 9), py(p->y) - 7, p->label, kPointFont, right_half ? "end" : "start");
+    label(*p, kPointFont, SvgStyle::kInk);
   }
 }
 

@@ -232,6 +232,7 @@ TEST(SweepCli, ResumeRunsOnlyTheMissingRuns) {
   ASSERT_EQ(before.size(), 2u);
   // ... and one of its runs lost its report (killed while committing, say).
   fs::remove(dir + "/sw/runs/alignment=1_closeness=10/report.json");
+  fs::create_directories(dir + "/sw/runs/.alignment=1_closeness=10.partial-99999/analysis");  // its leftover staging
   r = Pqlayout(dir, std::string("sweep dome.yaml ") + kParams + " --out sw");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("4 runs, 1 already finished, 3 to run"), std::string::npos) << r.out;
@@ -239,6 +240,7 @@ TEST(SweepCli, ResumeRunsOnlyTheMissingRuns) {
   auto after = ReportTimes(dir + "/sw");
   ASSERT_EQ(after.size(), 4u);
   EXPECT_EQ(after["alignment=1_closeness=0.1"], before["alignment=1_closeness=0.1"]);  // not rewritten
+  EXPECT_FALSE(fs::exists(dir + "/sw/runs/.alignment=1_closeness=10.partial-99999"));
   EXPECT_EQ(ReadCsv(dir + "/sw/sweep.csv").rows.size(), 4u);
   // A complete sweep reruns nothing.
   before = after;
