@@ -1,7 +1,7 @@
-// pqlayout command line: `pqlayout run CONFIG [--set KEY=VALUE]... [--out DIR] [--until STAGE]`
-// and `pqlayout keys` (the config reference). Exit codes: 0 success, 2 bad input or config
-// (one line on stderr naming the file, key or element), 1 internal failure. Progress lines
-// with elapsed time go to stdout.
+// pqlayout command line: `pqlayout run CONFIG [--set KEY=VALUE]... [--out DIR] [--until STAGE]`,
+// `compare`, `sweep`, `collect` and `keys` (the config reference). Exit codes: 0 success,
+// 2 bad input or config (one line on stderr naming the file, key or element), 1 internal
+// failure (sweep: 1 also when a run failed). Progress lines with elapsed time go to stdout.
 #include <CLI/CLI.hpp>
 #include <glog/logging.h>
 
@@ -11,10 +11,12 @@
 #include <iostream>
 #include <new>
 
+#include "geometry/atomic_file.h"
 #include "problems/build_info.h"
 #include "problems/compare.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"
+#include "problems/sweep.h"
 
 namespace {
 
@@ -50,18 +52,77 @@ struct RunArguments {
   std::vector<std::string> sets;
   std::string out;
   std::string until = "analyze";
+  std::string error_file;  // run: on failure the error line is also written here, on success removed
 };
+
+// `--error-file`: a failed run leaves its one-line error in a file (sweeps read it).
+int RecordError(const std::string& error_file, int code, const Status& status) {
+  if (error_file.empty()) return code;
+  std::error_code ec;
+  if (status.ok()) {
+    std::filesystem::remove(error_file, ec);
+    return code;
+  }
+  const Status written = pqlayout::WriteTextFileAtomically(error_file, status.message() + "\n");
+  if (!written.ok()) std::cerr << "pqlayout: error: " << written.message() << std::endl;
+  return code;
+}
 
 int Run(const RunArguments& args, const std::string& command_line) {
   pqlayout::Config config;
-  if (int code = ExitCode(pqlayout::LoadConfig(args.config, args.sets, &config))) return code;
+  const Status loaded = pqlayout::LoadConfig(args.config, args.sets, &config);
+  if (!loaded.ok()) return RecordError(args.error_file, ExitCode(loaded), loaded);
   pqlayout::RunOptions options;
   options.config_path = args.config;
   options.command_line = command_line;
   options.out_dir = args.out.empty() ? "out/" + std::filesystem::path(args.config).stem().string() : args.out;
   options.until = *pqlayout::StageFromName(args.until);  // validated by CLI11
   nlohmann::json report;
-  return ExitCode(pqlayout::RunPipeline(config, options, &report));
+  const Status status = pqlayout::RunPipeline(config, options, &report);
+  return RecordError(args.error_file, ExitCode(status), status);
+}
+
+struct SweepArguments {
+  pqlayout::SweepOptions options;
+  int jobs = 1;
+  bool list = false;
+};
+
+// The path printed in --list commands: as invoked if that was a path, else found on PATH.
+std::string ExecutableForCommands(const char* argv0) {
+  const std::string invoked = argv0;
+  if (invoked.find('/') == std::string::npos) return invoked;
+  return std::filesystem::absolute(invoked).lexically_normal().string();
+}
+
+// The path the sweep starts its runs with: this very binary.
+std::string ExecutableForRuns(const char* argv0) {
+  std::error_code ec;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? ExecutableForCommands(argv0) : self.string();
+}
+
+int Sweep(SweepArguments args, const char* argv0) {
+  if (args.options.out_dir.empty())
+    args.options.out_dir = "out/" + std::filesystem::path(args.options.config_path).stem().string() + "-sweep";
+  pqlayout::SweepPlan plan;
+  if (int code = ExitCode(pqlayout::PlanSweep(args.options, &plan))) return code;
+  if (args.list) {
+    // The plan goes to DIR/sweep.json so that `collect DIR` finds the runs; only runs not
+    // yet finished are listed, so the list also resumes a sweep.
+    if (int code = ExitCode(pqlayout::WriteSweepManifest(plan))) return code;
+    const std::string executable = ExecutableForCommands(argv0);
+    for (const auto& run : plan.runs)
+      if (pqlayout::InspectRun(plan, run) != pqlayout::RunState::kFinished)
+        std::cout << pqlayout::RunCommandLine(executable, plan, run) << "\n";
+    return 0;
+  }
+  pqlayout::SweepSummary summary;
+  if (int code = ExitCode(pqlayout::RunSweep(plan, ExecutableForRuns(argv0), args.jobs, &summary))) return code;
+  if (summary.failed == 0) return 0;
+  std::cerr << "pqlayout: error: " << summary.failed << " of " << summary.total
+            << " runs failed (their errors are in " << plan.out_dir << "/sweep.csv)" << std::endl;
+  return 1;
 }
 
 int Main(int argc, char** argv) {
@@ -91,6 +152,36 @@ int Main(int argc, char** argv) {
   compare->add_option("--set", compare_args.sets, "override a config key in both runs, KEY=VALUE; repeatable")
       ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   compare->add_option("--out", compare_args.out, "output folder (default: out/<config name>-compare)");
+  SweepArguments sweep_args;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep",
+      "run CONFIG for every combination of parameter values (cartesian product), each run in DIR/runs/<name>; "
+      "finished runs are skipped, so a sweep resumes. Writes DIR/sweep.csv, DIR/timings.csv and "
+      "DIR/figures/pareto.svg. Exit 0 if every run finished, 1 if a run failed (its error is in sweep.csv), "
+      "2 on bad input before anything ran");
+  sweep->add_option("CONFIG", sweep_args.options.config_path, "YAML config file")->required();
+  sweep->add_option("--param", sweep_args.options.parameters,
+                    "KEY=v1,v2,... | KEY=start:stop:count | KEY=log:start:stop:count (count values, ends "
+                    "included); repeatable, the first --param varies slowest")
+      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->required();
+  sweep->add_option("--set", sweep_args.options.overrides, "override a config key in every run, KEY=VALUE; repeatable")
+      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sweep->add_option("-j,--jobs", sweep_args.jobs,
+                    "runs at a time, each its own process (each Ceres solve already uses 2 threads)")
+      ->check(CLI::Range(1, 256))->capture_default_str();
+  sweep->add_option("--out", sweep_args.options.out_dir, "sweep folder (default: out/<config name>-sweep)");
+  sweep->add_option("--until", sweep_args.options.until, "last stage of every run")
+      ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
+  sweep->add_flag("--list", sweep_args.list,
+                  "write DIR/sweep.json and print one `pqlayout run ...` command per run not yet finished "
+                  "(for GNU parallel or a job array) instead of running; then `pqlayout collect DIR`");
+  std::string collect_dir;
+  CLI::App* collect = app.add_subcommand(
+      "collect", "gather the finished runs of a sweep folder into DIR/sweep.csv, DIR/timings.csv and "
+                 "DIR/figures/pareto.svg");
+  collect->add_option("DIR", collect_dir, "sweep folder (holds sweep.json)")->required();
+  run->add_option("--error-file", run_args.error_file,
+                  "on failure also write the error line to this file (removed on success); used by sweeps");
 
   try {
     app.parse(argc, argv);
@@ -114,6 +205,11 @@ int Main(int argc, char** argv) {
   }
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
+  if (sweep->parsed()) return Sweep(sweep_args, argv[0]);
+  if (collect->parsed()) {
+    pqlayout::CollectSummary summary;
+    return ExitCode(pqlayout::CollectSweep(collect_dir, &summary));
+  }
   if (compare->parsed()) {
     pqlayout::CompareOptions options;
     options.config_path = compare_args.config;

@@ -1,0 +1,639 @@
+#include "problems/sweep.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "geometry/atomic_file.h"
+#include "problems/config.h"
+#include "problems/pipeline.h"
+#include "problems/sweep_figures.h"
+
+extern char** environ;
+
+namespace pqlayout {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// ---- parameter values ----
+
+// The shortest text that reads back as exactly v ("0.1", "10", "1e-05").
+std::string ShortestNumber(double v) {
+  char text[40];
+  if (v == std::floor(v) && std::abs(v) < 1e15) {  // integers without an exponent: 10, not 1e+01
+    std::snprintf(text, sizeof(text), "%.0f", v == 0.0 ? 0.0 : v);
+    return text;
+  }
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(text, sizeof(text), "%.*g", precision, v);
+    if (std::strtod(text, nullptr) == v) break;
+  }
+  return text;
+}
+
+bool ParseNumber(const std::string& text, double* v) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return false;
+  char* end = nullptr;
+  *v = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && std::isfinite(*v);
+}
+
+// A value as the user wrote it, numbers in canonical form.
+std::string CanonicalValue(const std::string& text) {
+  double v;
+  return ParseNumber(text, &v) ? ShortestNumber(v) : text;
+}
+
+// Range values rounded to 12 significant digits, so 0:1:11 gives 0.3, not 0.30000000000000004.
+double RoundRangeValue(double v) {
+  char text[40];
+  std::snprintf(text, sizeof(text), "%.12g", v);
+  return std::strtod(text, nullptr);
+}
+
+std::vector<std::string> Split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1)
+    parts.push_back(text.substr(start, at - start));
+  parts.push_back(text.substr(start));
+  return parts;
+}
+
+Status ParseRange(const std::string& where, const std::string& values, std::vector<std::string>* out) {
+  const bool log = values.rfind("log:", 0) == 0;
+  const std::string expected =
+      log ? "expected log:start:stop:count with start, stop > 0 and an integer count >= 1"
+          : "expected start:stop:count with numbers start, stop and an integer count >= 1";
+  const std::vector<std::string> parts = Split(log ? values.substr(4) : values, ':');
+  double start, stop, count;
+  if (parts.size() != 3 || !ParseNumber(parts[0], &start) || !ParseNumber(parts[1], &stop) ||
+      !ParseNumber(parts[2], &count))
+    return Status::InvalidInput(where + ": bad range '" + values + "' (" + expected + ")");
+  if (count < 1 || count != std::floor(count) || count > 100000)
+    return Status::InvalidInput(where + ": bad range '" + values + "': count must be an integer in [1, 100000]");
+  if (log && (start <= 0 || stop <= 0))
+    return Status::InvalidInput(where + ": bad range '" + values + "': a log range needs start and stop > 0");
+  if (count == 1 && start != stop)
+    return Status::InvalidInput(where + ": bad range '" + values + "': count 1 needs start = stop");
+  const int n = static_cast<int>(count);
+  for (int i = 0; i < n; ++i) {
+    const double t = n == 1 ? 0.0 : double(i) / (n - 1);
+    const double v = i == n - 1 ? stop
+                     : log      ? std::exp(std::log(start) + t * (std::log(stop) - std::log(start)))
+                                : start + t * (stop - start);
+    out->push_back(ShortestNumber(RoundRangeValue(v)));
+  }
+  return Status::Ok();
+}
+
+// ---- folder names ----
+
+// For each key the shortest dotted suffix that no other key shares ("alignment" for
+// levelset.weights.alignment unless another swept key also ends in ".alignment").
+std::vector<std::string> ShortKeys(const std::vector<SweepParameter>& parameters) {
+  std::vector<std::string> shorts;
+  for (const auto& p : parameters) {
+    const std::vector<std::string> parts = Split(p.key, '.');
+    std::string suffix;
+    for (int i = static_cast<int>(parts.size()) - 1; i >= 0; --i) {
+      suffix = suffix.empty() ? parts[i] : parts[i] + "." + suffix;
+      bool unique = true;
+      for (const auto& other : parameters) {
+        if (&other == &p) continue;
+        const std::string& k = other.key;
+        if (k == suffix || (k.size() > suffix.size() && k.compare(k.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+                            k[k.size() - suffix.size() - 1] == '.'))
+          unique = false;
+      }
+      if (unique) break;
+    }
+    shorts.push_back(suffix);
+  }
+  return shorts;
+}
+
+std::string FolderSafe(const std::string& text) {
+  std::string safe;
+  for (const char c : text)
+    safe += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+') ? c : '_';
+  if (safe.empty() || safe[0] == '.') safe = "_" + safe;
+  return safe;
+}
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string FirstLine(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return line;
+}
+
+// ---- CSV ----
+
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string CsvNumber(const json& v) {
+  if (v.is_number_float()) return ShortestNumber(v.get<double>());
+  return v.dump();  // integers
+}
+
+// Every numeric leaf below `node`, as dotted name → value: objects by key, arrays of numbers
+// by index (`bbox_min.0`); booleans count as 0/1. Strings, nulls and lists of records (per
+// item detail such as singularities or per-round solver logs, whose length varies from run
+// to run) are not metrics of the run and are left out.
+void FlattenNumbers(const json& node, const std::string& prefix, std::map<std::string, json>* out) {
+  if (node.is_object()) {
+    for (const auto& [k, v] : node.items()) FlattenNumbers(v, prefix + "." + k, out);
+  } else if (node.is_array()) {
+    for (size_t i = 0; i < node.size(); ++i)
+      if (node[i].is_number()) (*out)[prefix + "." + std::to_string(i)] = node[i];
+  } else if (node.is_number()) {
+    (*out)[prefix] = node;
+  } else if (node.is_boolean()) {
+    (*out)[prefix] = node.get<bool>() ? 1 : 0;
+  }
+}
+
+// Wall times (`seconds`, `factor_seconds`, ...): they depend on the machine and its load.
+bool IsTiming(const std::string& name) {
+  const std::string last = name.substr(name.rfind('.') + 1);
+  return last == "seconds" || (last.size() > 8 && last.compare(last.size() - 8, 8, "_seconds") == 0);
+}
+
+// The metrics of a report, per stage in pipeline order: (dotted name, value).
+std::vector<std::pair<std::string, json>> StageMetrics(const json& report) {
+  std::vector<std::pair<std::string, json>> metrics;
+  if (!report.contains("stages")) return metrics;
+  for (const auto& stage : StageNames()) {
+    if (!report["stages"].contains(stage)) continue;
+    std::map<std::string, json> flat;
+    FlattenNumbers(report["stages"][stage], "stages." + stage, &flat);
+    for (auto& entry : flat) metrics.emplace_back(entry.first, entry.second);
+  }
+  return metrics;
+}
+
+// ---- child processes ----
+
+std::string DescribeExit(int status) {
+  if (WIFEXITED(status)) return "pqlayout run exited with code " + std::to_string(WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    return "pqlayout run was killed by signal " + std::to_string(signal) + " (" + strsignal(signal) + ")";
+  }
+  return "pqlayout run ended abnormally";
+}
+
+// Runs argv with stdout and stderr into log_path; returns the wait status, or -1 if it
+// could not be started (*error says why).
+int RunChild(const std::string& executable, const std::vector<std::string>& args, const std::string& log_path,
+             std::string* error) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::vector<std::string> all{executable};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid;
+  const int spawned = posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
+    *error = "cannot start " + executable + ": " + std::strerror(spawned);
+    return -1;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) {
+      *error = std::string("waitpid: ") + std::strerror(errno);
+      return -1;
+    }
+  }
+  return status;
+}
+
+std::string ShellQuote(const std::string& arg) {
+  const bool plain = !arg.empty() && std::all_of(arg.begin(), arg.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("_./=+:,@%-", c) != nullptr;
+  });
+  if (plain) return arg;
+  std::string quoted = "'";
+  for (const char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// A run killed while writing leaves its staging folder (.<name>.partial-<pid>, see
+// OutputFiles) beside its folder; the sweep that reruns it removes it.
+void RemoveStaleStaging(const fs::path& folder) {
+  const std::string prefix = "." + folder.filename().string() + ".partial-";
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(folder.parent_path(), ec))
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) stale.push_back(entry.path());
+  for (const auto& path : stale) fs::remove_all(path, ec);
+}
+
+// Progress lines reach a log file (or a job scheduler's) as each run finishes, even if
+// the sweep is killed later.
+void FlushProgress() {
+  std::cout.flush();
+  std::fflush(stdout);
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string RunLabel(const SweepRun& run) { return run.name; }
+
+// ---- the Pareto figure ----
+
+Status WriteParetoFigure(const SweepPlan& plan, const std::vector<RunState>& states,
+                         const std::vector<json>& reports) {
+  struct Axis {
+    const char* stage;
+    const char* metric;
+    const char* label;
+  };
+  const Axis planarity{"planarize", "planarity_max", "planarity δ, max"};
+  const Axis compliance{"analyze", "compliance_node_mean", "nodal compliance, mean [J]"};
+  const Axis alignment{"levelset", "alignment_rms_deg", "alignment to the guidance, RMS [°]"};
+  const Axis closeness{"planarize", "closeness_mean", "closeness to the reference, mean [m]"};
+  const auto value = [](const json& report, const Axis& axis, double* v) {
+    if (!report.contains("stages") || !report["stages"].contains(axis.stage)) return false;
+    const json& stage = report["stages"][axis.stage];
+    if (!stage.contains(axis.metric) || !stage[axis.metric].is_number()) return false;
+    *v = stage[axis.metric].get<double>();
+    return std::isfinite(*v);
+  };
+  std::vector<ScatterPanel> panels(2);
+  panels[0] = {"Planarity vs stiffness", planarity.label, compliance.label, {}};
+  panels[1] = {"Alignment vs closeness", alignment.label, closeness.label, {}};
+  const Axis* axes[2][2] = {{&planarity, &compliance}, {&alignment, &closeness}};
+  int finished = 0, failed = 0;
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    if (states[i] == RunState::kFailed) ++failed;
+    if (states[i] != RunState::kFinished) continue;
+    ++finished;
+    for (int p = 0; p < 2; ++p) {
+      ScatterPoint point;
+      point.label = RunLabel(plan.runs[i]);
+      if (value(reports[i], *axes[p][0], &point.x) && value(reports[i], *axes[p][1], &point.y))
+        panels[p].points.push_back(point);
+    }
+  }
+  std::string note = std::to_string(finished) + " finished run" + (finished == 1 ? "" : "s");
+  if (failed) note += ", " + std::to_string(failed) + " failed (not shown)";
+  note += "; lower is better on every axis; labels are the runs' folders";
+  std::string title = "Sweep over";
+  for (size_t i = 0; i < plan.parameters.size(); ++i) title += (i ? ", " : " ") + plan.parameters[i].key;
+  return WriteTextFileAtomically((fs::path(plan.out_dir) / "figures" / "pareto.svg").string(),
+                                 ScatterPanelsSvg(panels, title, note));
+}
+
+}  // namespace
+
+Status ParseSweepParameter(const std::string& spec, SweepParameter* parameter) {
+  const std::string where = "--param " + spec;
+  const size_t eq = spec.find('=');
+  if (eq == std::string::npos || eq == 0)
+    return Status::InvalidInput(where + ": expected KEY=v1,v2,... or KEY=start:stop:count or KEY=log:start:stop:count");
+  parameter->key = spec.substr(0, eq);
+  parameter->values.clear();
+  const std::string values = spec.substr(eq + 1);
+  if (values.rfind("log:", 0) == 0 || (values.find(':') != std::string::npos && values.find(',') == std::string::npos)) {
+    PQ_RETURN_IF_ERROR(ParseRange(where, values, &parameter->values));
+  } else {
+    for (const std::string& v : Split(values, ',')) {
+      if (v.empty()) return Status::InvalidInput(where + ": empty value in the list");
+      parameter->values.push_back(CanonicalValue(v));
+    }
+  }
+  std::set<std::string> seen;
+  for (const auto& v : parameter->values)
+    if (!seen.insert(v).second) return Status::InvalidInput(where + ": value " + v + " is listed twice");
+  return Status::Ok();
+}
+
+Status PlanSweep(const SweepOptions& options, SweepPlan* plan) {
+  *plan = SweepPlan();
+  plan->config_path = options.config_path;
+  plan->overrides = options.overrides;
+  plan->until = options.until;
+  plan->out_dir = options.out_dir;
+  if (options.parameters.empty()) return Status::InvalidInput("sweep: give at least one --param KEY=VALUES");
+  Config config;
+  PQ_RETURN_IF_ERROR(LoadConfig(options.config_path, options.overrides, &config));
+  std::set<std::string> keys;
+  for (const std::string& spec : options.parameters) {
+    SweepParameter parameter;
+    PQ_RETURN_IF_ERROR(ParseSweepParameter(spec, &parameter));
+    if (!keys.insert(parameter.key).second)
+      return Status::InvalidInput("--param " + spec + ": " + parameter.key + " is swept twice");
+    // Each value on its own, so that the error names the --param and the value.
+    for (const std::string& value : parameter.values) {
+      std::vector<std::string> overrides = options.overrides;
+      overrides.push_back(parameter.key + "=" + value);
+      const Status status = LoadConfig(options.config_path, overrides, &config);
+      if (!status.ok()) {
+        // The config says "--set KEY=VALUE: KEY: reason"; say "--param SPEC: value VALUE: reason".
+        std::string message = status.message();
+        for (const std::string prefix : {"--set " + overrides.back() + ": ", parameter.key + ": "})
+          if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
+        if (message.rfind("unknown key", 0) == 0 || message.rfind("is a section", 0) == 0)
+          return Status::InvalidInput("--param " + spec + ": " + parameter.key + ": " + message);
+        return Status::InvalidInput("--param " + spec + ": value " + value + ": " + message);
+      }
+    }
+    plan->parameters.push_back(parameter);
+  }
+  size_t total = 1;
+  for (const auto& p : plan->parameters) {
+    total *= p.values.size();
+    if (total > 100000) return Status::InvalidInput("sweep: more than 100000 runs");
+  }
+  const std::vector<std::string> shorts = ShortKeys(plan->parameters);
+  std::map<std::string, size_t> names;
+  for (size_t index = 0; index < total; ++index) {
+    SweepRun run;
+    size_t rest = index;
+    std::vector<size_t> digits(plan->parameters.size());
+    for (size_t p = plan->parameters.size(); p-- > 0;) {  // the last parameter varies fastest
+      digits[p] = rest % plan->parameters[p].values.size();
+      rest /= plan->parameters[p].values.size();
+    }
+    std::vector<std::string> overrides = options.overrides;
+    for (size_t p = 0; p < plan->parameters.size(); ++p) {
+      const std::string& value = plan->parameters[p].values[digits[p]];
+      run.assignments.emplace_back(plan->parameters[p].key, value);
+      run.name += (p ? "_" : "") + shorts[p] + "=" + FolderSafe(value);
+      overrides.push_back(plan->parameters[p].key + "=" + value);
+    }
+    const Status status = LoadConfig(options.config_path, overrides, &config);
+    if (!status.ok()) return status.WithContext("sweep run " + run.name);
+    run.config = ConfigToJson(config);
+    if (names.count(run.name))
+      return Status::InvalidInput("sweep: two runs would share the folder runs/" + run.name +
+                                  " (values that differ only in characters a folder name cannot hold)");
+    names[run.name] = index;
+    plan->runs.push_back(std::move(run));
+  }
+  return Status::Ok();
+}
+
+Status WriteSweepManifest(const SweepPlan& plan) {
+  json parameters = json::array();
+  for (const auto& p : plan.parameters) parameters.push_back({{"key", p.key}, {"values", p.values}});
+  json runs = json::array();
+  for (const auto& r : plan.runs) {
+    json assignments = json::array();
+    for (const auto& [key, value] : r.assignments) assignments.push_back({key, value});
+    runs.push_back({{"name", r.name}, {"parameters", assignments}, {"config", r.config}});
+  }
+  const json manifest = {{"config_file", plan.config_path}, {"overrides", plan.overrides}, {"until", plan.until},
+                         {"parameters", parameters}, {"runs", runs}};
+  return WriteTextFileAtomically((fs::path(plan.out_dir) / "sweep.json").string(), manifest.dump(2) + "\n");
+}
+
+Status ReadSweepManifest(const std::string& dir, SweepPlan* plan) {
+  const fs::path path = fs::path(dir) / "sweep.json";
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    return Status::InvalidInput(path.string() + ": not found (is " + dir + " a sweep folder? `pqlayout sweep` "
+                                "and `pqlayout sweep --list` write it)");
+  *plan = SweepPlan();
+  plan->out_dir = dir;
+  try {
+    const json manifest = json::parse(ReadText(path));
+    plan->config_path = manifest.at("config_file").get<std::string>();
+    plan->overrides = manifest.at("overrides").get<std::vector<std::string>>();
+    plan->until = manifest.at("until").get<std::string>();
+    for (const auto& p : manifest.at("parameters"))
+      plan->parameters.push_back({p.at("key").get<std::string>(), p.at("values").get<std::vector<std::string>>()});
+    for (const auto& r : manifest.at("runs")) {
+      SweepRun run;
+      run.name = r.at("name").get<std::string>();
+      for (const auto& a : r.at("parameters")) run.assignments.emplace_back(a.at(0).get<std::string>(), a.at(1).get<std::string>());
+      run.config = r.at("config");
+      if (run.assignments.size() != plan->parameters.size())
+        return Status::InvalidInput(path.string() + ": run " + run.name + " does not set every parameter");
+      plan->runs.push_back(std::move(run));
+    }
+  } catch (const json::exception& e) {
+    return Status::InvalidInput(path.string() + ": not a valid sweep manifest: " + e.what());
+  }
+  return Status::Ok();
+}
+
+std::string RunFolder(const SweepPlan& plan, const SweepRun& run) {
+  return (fs::path(plan.out_dir) / "runs" / run.name).string();
+}
+
+RunState InspectRun(const SweepPlan& plan, const SweepRun& run, std::string* error) {
+  const fs::path folder = RunFolder(plan, run);
+  std::error_code ec;
+  if (fs::is_regular_file(folder / "report.json", ec)) {
+    try {
+      const json report = json::parse(ReadText(folder / "report.json"));
+      if (report.at("config") == run.config && report.at("run").at("until") == plan.until) return RunState::kFinished;
+    } catch (const json::exception&) {
+      // not a report of this run: the run is pending (or failed, below)
+    }
+  }
+  if (fs::is_regular_file(folder / "error.txt", ec)) {
+    if (error) *error = FirstLine(ReadText(folder / "error.txt"));
+    return RunState::kFailed;
+  }
+  return RunState::kPending;
+}
+
+std::vector<std::string> RunArguments(const SweepPlan& plan, const SweepRun& run) {
+  std::vector<std::string> args{"run", plan.config_path};
+  for (const auto& set : plan.overrides) args.insert(args.end(), {"--set", set});
+  for (const auto& [key, value] : run.assignments) args.insert(args.end(), {"--set", key + "=" + value});
+  const std::string folder = RunFolder(plan, run);
+  args.insert(args.end(), {"--out", folder, "--error-file", (fs::path(folder) / "error.txt").string()});
+  if (plan.until != "analyze") args.insert(args.end(), {"--until", plan.until});
+  return args;
+}
+
+std::string RunCommandLine(const std::string& executable, const SweepPlan& plan, const SweepRun& run) {
+  std::string line = ShellQuote(executable);
+  for (const auto& arg : RunArguments(plan, run)) line += " " + ShellQuote(arg);
+  return line;
+}
+
+Status RunSweep(const SweepPlan& plan, const std::string& executable, int jobs, SweepSummary* summary) {
+  *summary = SweepSummary();
+  summary->total = static_cast<int>(plan.runs.size());
+  PQ_RETURN_IF_ERROR(WriteSweepManifest(plan));
+  std::vector<size_t> todo;
+  for (size_t i = 0; i < plan.runs.size(); ++i)
+    if (InspectRun(plan, plan.runs[i]) != RunState::kFinished) todo.push_back(i);
+  summary->skipped = summary->total - static_cast<int>(todo.size());
+  LOG(INFO) << "sweep: " << summary->total << " runs, " << summary->skipped << " already finished, "
+            << todo.size() << " to run, " << std::min<size_t>(std::max(jobs, 1), std::max<size_t>(todo.size(), 1))
+            << " at a time";
+  FlushProgress();
+  std::atomic<size_t> next{0};
+  std::mutex mutex;
+  Status internal = Status::Ok();
+  const auto worker = [&] {
+    for (size_t k; (k = next++) < todo.size();) {
+      const SweepRun& run = plan.runs[todo[k]];
+      const fs::path folder = RunFolder(plan, run);
+      std::error_code ec;
+      fs::create_directories(folder, ec);
+      RemoveStaleStaging(folder);
+      const auto start = std::chrono::steady_clock::now();
+      std::string error;
+      const int status = RunChild(executable, RunArguments(plan, run), (folder / "run.log").string(), &error);
+      std::string run_error;
+      RunState state = InspectRun(plan, run, &run_error);
+      if (status == 0 && state != RunState::kFinished) {
+        run_error = "pqlayout run succeeded but " + (folder / "report.json").string() + " does not hold this run";
+        state = RunState::kFailed;
+      } else if (status != 0 && state != RunState::kFailed) {
+        // No error.txt: the run could not start or was killed; record why.
+        run_error = status < 0 ? error : DescribeExit(status);
+        state = RunState::kFailed;
+      }
+      if (state == RunState::kFailed) {
+        const Status written = WriteTextFileAtomically((folder / "error.txt").string(), run_error + "\n");
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!written.ok() && internal.ok()) internal = written;
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      ++summary->ran;
+      char prefix[64];
+      std::snprintf(prefix, sizeof(prefix), "sweep: [%d/%zu] ", summary->ran, todo.size());
+      if (state == RunState::kFinished) {
+        char seconds[32];
+        std::snprintf(seconds, sizeof(seconds), "%.1f", SecondsSince(start));
+        LOG(INFO) << prefix << run.name << ": done in " << seconds << " s";
+      } else {
+        ++summary->failed;
+        LOG(WARNING) << prefix << run.name << ": failed: " << run_error;
+      }
+      FlushProgress();
+    }
+  };
+  std::vector<std::thread> threads;
+  const int n = std::max(1, std::min<int>(jobs, static_cast<int>(todo.size())));
+  for (int t = 0; t < n; ++t) threads.emplace_back(worker);
+  for (auto& t : threads) t.join();
+  PQ_RETURN_IF_ERROR(internal);
+  CollectSummary collected;
+  return CollectSweep(plan.out_dir, &collected);
+}
+
+std::string SweepCsv(const SweepPlan& plan, const std::vector<RunState>& states, const std::vector<json>& reports,
+                     const std::vector<std::string>& errors) {
+  // Metric columns: the union over the finished runs, stages in pipeline order.
+  std::vector<std::string> columns;
+  std::set<std::string> seen;
+  std::vector<std::map<std::string, json>> rows(plan.runs.size());
+  for (const auto& stage : StageNames()) {
+    std::set<std::string> stage_columns;
+    for (size_t i = 0; i < plan.runs.size(); ++i) {
+      if (states[i] != RunState::kFinished) continue;
+      for (auto& [name, value] : StageMetrics(reports[i])) {
+        if (IsTiming(name) || name.rfind("stages." + stage + ".", 0) != 0) continue;
+        stage_columns.insert(name);
+        rows[i][name] = value;
+      }
+    }
+    for (const auto& c : stage_columns)
+      if (seen.insert(c).second) columns.push_back(c);
+  }
+  std::ostringstream csv;
+  csv << "run,status";
+  for (const auto& p : plan.parameters) csv << "," << CsvField(p.key);
+  for (const auto& c : columns) csv << "," << CsvField(c);
+  csv << ",error\n";
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    if (states[i] == RunState::kPending) continue;
+    const SweepRun& run = plan.runs[i];
+    csv << CsvField(run.name) << "," << (states[i] == RunState::kFinished ? "ok" : "failed");
+    for (const auto& assignment : run.assignments) csv << "," << CsvField(assignment.second);
+    for (const auto& c : columns) {
+      csv << ",";
+      const auto it = rows[i].find(c);
+      if (it != rows[i].end()) csv << CsvNumber(it->second);
+    }
+    csv << "," << (states[i] == RunState::kFailed ? CsvField(errors[i]) : "") << "\n";
+  }
+  return csv.str();
+}
+
+Status CollectSweep(const std::string& dir, CollectSummary* summary) {
+  *summary = CollectSummary();
+  SweepPlan plan;
+  PQ_RETURN_IF_ERROR(ReadSweepManifest(dir, &plan));
+  std::vector<RunState> states(plan.runs.size());
+  std::vector<json> reports(plan.runs.size());
+  std::vector<std::string> errors(plan.runs.size());
+  std::ostringstream timings;
+  timings << "run,stage,seconds\n";
+  for (size_t i = 0; i < plan.runs.size(); ++i) {
+    states[i] = InspectRun(plan, plan.runs[i], &errors[i]);
+    if (states[i] == RunState::kFinished) {
+      ++summary->finished;
+      reports[i] = json::parse(ReadText(fs::path(RunFolder(plan, plan.runs[i])) / "report.json"));
+      for (const auto& stage : StageNames()) {
+        const json& stages = reports[i]["stages"];
+        if (stages.contains(stage) && stages[stage].contains("seconds"))
+          timings << CsvField(plan.runs[i].name) << "," << stage << "," << CsvNumber(stages[stage]["seconds"]) << "\n";
+      }
+      if (reports[i].contains("run") && reports[i]["run"].contains("total_seconds"))
+        timings << CsvField(plan.runs[i].name) << ",total," << CsvNumber(reports[i]["run"]["total_seconds"]) << "\n";
+    } else if (states[i] == RunState::kFailed) {
+      ++summary->failed;
+    } else {
+      ++summary->pending;
+    }
+  }
+  const fs::path out(dir);
+  PQ_RETURN_IF_ERROR(WriteTextFileAtomically((out / "sweep.csv").string(), SweepCsv(plan, states, reports, errors)));
+  PQ_RETURN_IF_ERROR(WriteTextFileAtomically((out / "timings.csv").string(), timings.str()));
+  PQ_RETURN_IF_ERROR(WriteParetoFigure(plan, states, reports));
+  LOG(INFO) << "collect: " << summary->finished << " finished, " << summary->failed << " failed, " << summary->pending
+            << " not run; wrote " << (out / "sweep.csv").string() << " and " << (out / "figures" / "pareto.svg").string();
+  return Status::Ok();
+}
+
+}  // namespace pqlayout
