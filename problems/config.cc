@@ -351,6 +351,9 @@ KeyTable::KeyTable(Config* c) {
   Number("analysis.panel_load", &a.panel_load, kNonNegative, "panel dead load, N/m² of face area");
   Number("analysis.gravity", &a.gravity, kNonNegative, "g, m/s²");
   Bool("analysis.export_calculix", &a.export_calculix, "also write analysis/model.inp for CalculiX");
+  Choice("analysis.calculix_element", &a.calculix_element, {"u1", "b32r"},
+         "CalculiX beam: u1 = ccx's 2-node beam with the model's Euler–Bernoulli stiffness; b32r = 3-node beam ccx expands to bricks of the true section");
+  Integer("analysis.calculix_subdivisions", &a.calculix_subdivisions, 1, 64, "CalculiX elements per member (b32r converges as this grows)");
   Number("analysis.material.youngs_modulus", &a.material.youngs_modulus, kPositive, "E, Pa");
   Number("analysis.material.poisson_ratio", &a.material.poisson_ratio, Range{-1.0, 0.5, true, true}, "ν; G = E / (2(1+ν))");
   Number("analysis.material.density", &a.material.density, kNonNegative, "ρ, kg/m³");

@@ -124,6 +124,8 @@ struct AnalysisOptions {
   double panel_load = 1000.0;  // panel dead load, N/m² of face area
   double gravity = 9.81;       // g, m/s²
   bool export_calculix = false;  // also write analysis/model.inp for CalculiX
+  std::string calculix_element = "u1";  // u1 (same Euler–Bernoulli stiffness) | b32r (expanded to bricks)
+  int calculix_subdivisions = 1;        // CalculiX elements per member
   MaterialOptions material;
   SectionOptions section;
 };
