@@ -334,7 +334,7 @@ KeyTable::KeyTable(Config* c) {
   Integer("levelset.joint_iterations", &c->levelset.joint_iterations, 0, 100000,
           "Ceres iterations of the final solve of φ and ψ together (0: none)");
   Number("levelset.working_edge", &c->levelset.working_edge, kNonNegative,
-         "edge length of the mesh φ, ψ are solved on, m (0: h/2); a reference finer than 0.7 × this is remeshed");
+         "edge length of the mesh φ, ψ are solved on, m (0: 0.4 h); a reference finer than 0.7 × this is remeshed");
 
   Number("extract.corner_angle", &c->extract.corner_angle, Range{0.0, 180.0, true, true}, "boundary turning angle above which a vertex is a corner, degrees");
   Number("extract.min_edge", &c->extract.min_edge, Range{0.0, 1.0, false, true}, "edges shorter than min_edge × h are merged");

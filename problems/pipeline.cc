@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <ctime>
+#include <fstream>
+#include <string>
 
 #include "problems/build_info.h"
 #include "problems/report_html.h"
@@ -11,6 +13,16 @@
 
 namespace pqlayout {
 namespace {
+
+// The process's peak resident memory so far (VmHWM of /proc/self/status), MB; −1 where the
+// system does not say (not Linux).
+double PeakResidentMegabytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
+  return -1.0;
+}
 
 struct StageEntry {
   Stage stage;
@@ -89,6 +101,7 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     nlohmann::json metrics = nlohmann::json::object();
     PQ_RETURN_IF_ERROR(entry.run(&state, out.get(), &metrics));
     metrics["seconds"] = SecondsSince(stage_start);
+    if (const double peak = PeakResidentMegabytes(); peak > 0.0) metrics["peak_memory_mb"] = peak;
     (*report)["stages"][entry.name] = metrics;
     completed.push_back(entry.name);
     LOG(INFO) << entry.name << ": done in " << metrics["seconds"].get<double>() << " s";

@@ -508,22 +508,24 @@ GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceFiel
 
 constexpr double kWorkingCornerAngle = 30.0;  // corners the working mesh keeps (extract.corner_angle's default)
 constexpr double kReuseReference = 0.7;       // solve on the reference if its mean edge ≥ this × working edge
+constexpr double kDefaultWorkingEdge = 0.4;   // × h: CGAL lands near 12k triangles on the Great Court at h = 3 m
+constexpr int kRemeshIterations = 3;
 
 }  // namespace
 
 Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
                       LevelSetSolution* solution) {
-  const double working_edge = options.working_edge > 0.0 ? options.working_edge : 0.5 * h;
+  const double working_edge = options.working_edge > 0.0 ? options.working_edge : kDefaultWorkingEdge * h;
   const double reference_edge = MeanEdgeLength(s.mesh());
   if (reference_edge >= kReuseReference * working_edge) {
     solution->working_faces = s.num_faces();
     return SolveOnMesh(s, g, options, h, solution);
   }
   // A reference much finer than the layout needs: solve on a remeshed copy whose edges are
-  // working_edge long (the level lines are h apart, so h/2 resolves them), then interpolate
+  // working_edge long (the level lines are h apart; 0.4 h resolves them), then interpolate
   // φ and ψ to the reference's vertices. Stage time then follows h, not the reference size.
   TriMesh working_mesh;
-  PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, 5, &working_mesh)
+  PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, kRemeshIterations, &working_mesh)
                          .WithContext("levelset working mesh"));
   const SurfaceModel working(std::move(working_mesh));
   LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference << " × working edge "

@@ -186,10 +186,12 @@ void FlattenNumbers(const json& node, const std::string& prefix, std::map<std::s
   }
 }
 
-// Wall times (`seconds`, `factor_seconds`, ...): they depend on the machine and its load.
+// Wall times (`seconds`, `factor_seconds`, ...) and the process's peak memory after each
+// stage (`peak_memory_mb`): they depend on the machine and its load.
 bool IsTiming(const std::string& name) {
   const std::string last = name.substr(name.rfind('.') + 1);
-  return last == "seconds" || (last.size() > 8 && last.compare(last.size() - 8, 8, "_seconds") == 0);
+  return last == "seconds" || last == "peak_memory_mb" ||
+         (last.size() > 8 && last.compare(last.size() - 8, 8, "_seconds") == 0);
 }
 
 // The metrics of a report, per stage in pipeline order: (dotted name, value).
