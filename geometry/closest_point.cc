@@ -59,7 +59,8 @@ SurfacePoint ClosestPointQuery::OnBoundary(const Eigen::Vector3d& p) const {
   for (size_t e = 0; e < boundary_edges_.size(); ++e) {
     const auto& [a, b] = boundary_edges_[e];
     const Eigen::Vector3d ab = b - a;
-    const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    const double t_line = (p - a).dot(ab) / ab.squaredNorm();
+    const double t = std::clamp(t_line, 0.0, 1.0);
     const Eigen::Vector3d q = a + t * ab;
     const double d = (q - p).norm();
     if (d < out.distance) {
@@ -67,6 +68,7 @@ SurfacePoint ClosestPointQuery::OnBoundary(const Eigen::Vector3d& p) const {
       out.point = q;
       out.tangent = ab.normalized();
       out.element = static_cast<int>(e);
+      out.inside_edge = t_line > 0.0 && t_line < 1.0;
     }
   }
   return out;

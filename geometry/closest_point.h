@@ -15,6 +15,7 @@ struct SurfacePoint {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // of the triangle (surface) or unused
   Eigen::Vector3d tangent = Eigen::Vector3d::UnitX(); // of the boundary edge (boundary) or unused
   int element = -1;                                   // triangle or boundary-edge index
+  bool inside_edge = false;                           // boundary: the point is inside the edge, not an end
   double distance = 0.0;
 };
 

@@ -344,8 +344,9 @@ KeyTable::KeyTable(Config* c) {
   Number("planarize.weights.closeness", &pw.closeness, kNonNegative, "vertices stay on the reference surface");
   Number("planarize.weights.boundary", &pw.boundary, kNonNegative, "boundary vertices stay on the reference boundary");
   Number("planarize.weights.fairness", &pw.fairness, kNonNegative, "second differences along the mesh polylines");
+  Number("planarize.weights.anchor", &pw.anchor, kNonNegative, "vertices stay near where the layout put them");
   Number("planarize.target_delta", &c->planarize.target_delta, kPositive, "stop when max planarity δ ≤ target_delta");
-  Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (closest points refreshed, planarity weight raised)");
+  Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (planarity weight raised after each)");
 
   auto& a = c->analysis;
   Number("analysis.panel_load", &a.panel_load, kNonNegative, "panel dead load, N/m² of face area");

@@ -98,6 +98,7 @@ struct PlanarizeWeights {
   double closeness = 1.0;   // vertices on the reference surface
   double boundary = 1.0;    // boundary vertices on the reference boundary
   double fairness = 0.01;   // second differences along the mesh polylines
+  double anchor = 1.0;      // vertices stay near where the layout put them
 };
 
 struct PlanarizeOptions {

@@ -1,12 +1,27 @@
 // Stage `planarize` (paper §3.2; Liu et al. 2006; SPEC §6): vertex positions move so that
 // every face becomes planar (δ ≤ planarize.target_delta) while the vertices stay on the
-// reference surface, boundary vertices on its boundary, corners fixed and the mesh
-// polylines fair. Residual terms: problems/residuals/{planarity,closeness,boundary,
-// fairness}_residual.h. Rounds: refresh closest points (CGAL AABB tree), solve (Ceres),
-// measure δ (geometry/planarity.h, the SPEC definition); until δ_max ≤ target, each round
-// multiplies the planarity weight by 4 and the closeness and boundary weights by 2, so that
-// planarity wins in the end without the vertices drifting off the reference (raising
-// planarity alone left them 0.47 m off on the Great Court, this schedule 0.22 m).
+// reference surface, boundary vertices on its boundary, corners fixed, the mesh polylines
+// fair and the vertices near where the layout put them. Residual terms, one header each in
+// problems/residuals/: planarity (auxiliary plane per face), closeness and boundary (exact
+// distance to the reference mesh / its boundary polylines, closest point found afresh at every
+// evaluation with CGAL's AABB tree), anchor, fairness; surface_chart_manifold.h keeps a vertex
+// on the reference as a hard constraint.
+//
+// Schedule. Rounds of at most 10 Ceres iterations (warm-started), the planarity weight
+// ×30 after each, until δ max ≤ target:
+//   1. on the surface: every vertex is a point OF the reference mesh (SurfaceManifold: steps
+//      in the triangle's plane, retracted onto the mesh), so closeness is exactly 0 however
+//      strong planarity gets. This is where a net that is not conjugate slides along the
+//      surface until it nearly is — metres, on the Great Court.
+//   2. once a round improves δ max by less than half (on a triangle mesh a vertex pinned to
+//      the surface can only bend at the triangles' creases, where the solver stalls): the
+//      vertices are set free with the closeness and boundary residuals, weights 1e4 × config,
+//      ×3 per round, and the last few millimetres of planarity are bought with ≤ 2 cm of
+//      closeness on the Great Court (≤ 0.006 h).
+// The earlier schedule (penalty closeness to a closest point refreshed once per round, only
+// ×2 per round against planarity's ×4) ended 0.22 m off the reference on the Great Court,
+// with 100-iteration rounds: planarity outgrew closeness, and the tangent plane a round was
+// linearised on was wrong by the time vertices had slid metres.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -22,7 +37,9 @@ struct PlanarizeReport {
   double closeness_max = 0.0, closeness_mean = 0.0;  // distance to the reference mesh, m
   double boundary_deviation = 0.0;                   // boundary vertices to the reference boundary, m
   double max_displacement = 0.0;                     // from the extracted mesh, m
+  double max_displacement_edges = 0.0;               // ... in mean edge lengths of the extracted mesh
   int rounds = 0;
+  int iterations = 0;                                // Ceres iterations, all rounds
   nlohmann::json ceres = nlohmann::json::array();    // one summary per round
   nlohmann::json ToJson() const;
 };

@@ -9,10 +9,12 @@
 #include "geometry/mesh_io.h"
 #include "geometry/planarity.h"
 #include "problems/planarize.h"
+#include "problems/residuals/anchor_residual.h"
 #include "problems/residuals/boundary_residual.h"
 #include "problems/residuals/closeness_residual.h"
 #include "problems/residuals/fairness_residual.h"
 #include "problems/residuals/planarity_residual.h"
+#include "problems/residuals/surface_chart_manifold.h"
 #include "problems/stages.h"
 
 namespace pqlayout {
@@ -31,10 +33,17 @@ nlohmann::json PlanarizeReport::ToJson() const {
   return {{"planarity_max", planarity_max},   {"planarity_mean", planarity_mean},
           {"closeness_max", closeness_max},   {"closeness_mean", closeness_mean},
           {"boundary_deviation", boundary_deviation}, {"max_displacement", max_displacement},
-          {"rounds", rounds},                 {"ceres", ceres}};
+          {"max_displacement_edges", max_displacement_edges}, {"rounds", rounds},
+          {"iterations", iterations},         {"ceres", ceres}};
 }
 
 namespace {
+
+// The schedule (see problems/planarize.h): starting weights, the factors they are raised by
+// after each round, and the Ceres iterations per round.
+constexpr double kPlanarityStart = 1e3, kClosenessStart = 1e4;
+constexpr double kPlanarityRaise = 30.0, kClosenessRaise = 3.0;
+constexpr int kIterationsPerRound = 10;
 
 struct FacePlane {
   Eigen::Vector3d n;
@@ -107,73 +116,111 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
   std::vector<double> position(3 * nv);
   for (int v = 0; v < nv; ++v) {
     start[v] = ToEigen(mesh.point(VertexHandle(v)));
-    for (int k = 0; k < 3; ++k) position[3 * v + k] = start[v][k];
+    const auto& origin = extracted->origin[v];
+    const Eigen::Vector3d p =
+        origin.corner ? start[v] : origin.on_boundary ? query.OnBoundary(start[v]).point : query.OnSurface(start[v]).point;
+    for (int k = 0; k < 3; ++k) position[3 * v + k] = p[k];
   }
   std::vector<std::vector<int>> faces;
-  std::vector<FacePlane> planes;
+  std::vector<std::array<double, 4>> planes;
+  std::vector<double> mean_diagonal;
   for (const auto f : mesh.faces()) {
     std::vector<int> ids;
     std::vector<Eigen::Vector3d> polygon;
     for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx()), polygon.push_back(start[v.idx()]);
     faces.push_back(ids);
-    planes.push_back(FitPlane(polygon));
+    const FacePlane plane = FitPlane(polygon);
+    planes.push_back({plane.n.x(), plane.n.y(), plane.n.z(), plane.d});
+    mean_diagonal.push_back(plane.mean_diagonal);
   }
   const auto triples = PolylineTriples(mesh);
   const auto& w = options.weights;
-  double planarity_weight = w.planarity, closeness_weight = w.closeness, boundary_weight = w.boundary;
-  Measure(mesh, extracted->origin, query, report);
-  for (report->rounds = 0; report->rounds < options.max_rounds && report->planarity_max > options.target_delta;) {
-    ++report->rounds;
+  // Weights (config values scale these): the residuals are all dimensionless (δ, metres / h),
+  // so the same numbers work at every spacing h.
+  const double anchor_weight = w.anchor, fairness_weight = w.fairness;
+  double planarity_weight = kPlanarityStart * w.planarity;
+  double closeness_weight = kClosenessStart * w.closeness, boundary_weight = kClosenessStart * w.boundary;
+
+  // on_surface: vertices move on the reference (SurfaceManifold); otherwise in space with
+  // closeness and boundary residuals.
+  auto solve = [&](bool on_surface, ceres::Solver::Summary* summary) {
     ceres::Problem problem;
     for (size_t f = 0; f < faces.size(); ++f) {
       if (faces[f].size() < 4) continue;  // a triangle is planar
+      problem.AddParameterBlock(planes[f].data(), 4,
+                                new ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>());
       for (const int v : faces[f])
-        problem.AddResidualBlock(PlanarityResidual::Create(planarity_weight, planes[f].mean_diagonal), nullptr,
-                                 planes[f].n.data(), &planes[f].d, &position[3 * v]);
-      problem.SetManifold(planes[f].n.data(), new ceres::SphereManifold<3>());
+        problem.AddResidualBlock(PlanarityResidual::Create(planarity_weight, mean_diagonal[f]), nullptr,
+                                 planes[f].data(), &position[3 * v]);
     }
     for (int v = 0; v < nv; ++v) {
-      const Eigen::Vector3d p(position[3 * v], position[3 * v + 1], position[3 * v + 2]);
-      const SurfacePoint c = query.OnSurface(p);
-      problem.AddResidualBlock(ClosenessResidual::Create(c.point, c.normal, closeness_weight, h), nullptr, &position[3 * v]);
-      if (extracted->origin[v].on_boundary && w.boundary > 0.0) {
-        const SurfacePoint b = query.OnBoundary(p);
-        problem.AddResidualBlock(BoundaryResidual::Create(b.point, b.tangent, boundary_weight, h), nullptr, &position[3 * v]);
+      double* p = &position[3 * v];
+      problem.AddParameterBlock(p, 3);
+      const auto& origin = extracted->origin[v];
+      if (origin.corner) {
+        problem.SetParameterBlockConstant(p);
+        continue;
       }
+      if (on_surface)
+        problem.SetManifold(p, new SurfaceManifold(&query, origin.on_boundary));
+      else if (origin.on_boundary)
+        problem.AddResidualBlock(new BoundaryResidual(&query, boundary_weight, h), nullptr, p);
+      else
+        problem.AddResidualBlock(new ClosenessResidual(&query, closeness_weight, h), nullptr, p);
+      if (anchor_weight > 0.0) problem.AddResidualBlock(AnchorResidual::Create(start[v], anchor_weight, h), nullptr, p);
     }
-    if (w.fairness > 0.0)
+    if (fairness_weight > 0.0)
       for (const auto& t : triples)
-        problem.AddResidualBlock(FairnessResidual::Create(w.fairness, h), nullptr, &position[3 * t[0]],
+        problem.AddResidualBlock(FairnessResidual::Create(fairness_weight, h), nullptr, &position[3 * t[0]],
                                  &position[3 * t[1]], &position[3 * t[2]]);
-    for (int v = 0; v < nv; ++v)
-      if (extracted->origin[v].corner && problem.HasParameterBlock(&position[3 * v]))
-        problem.SetParameterBlockConstant(&position[3 * v]);
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
     solver.num_threads = 2;
-    solver.max_num_iterations = 100;
-    solver.function_tolerance = 1e-12;
+    solver.max_num_iterations = kIterationsPerRound;
+    solver.function_tolerance = 1e-6;
     solver.logging_type = ceres::SILENT;
+    ceres::Solve(solver, &problem, summary);
+  };
+
+  for (int v = 0; v < nv; ++v) mesh.set_point(VertexHandle(v), {position[3 * v], position[3 * v + 1], position[3 * v + 2]});
+  Measure(mesh, extracted->origin, query, report);
+  bool on_surface = true;
+  for (report->rounds = 0; report->rounds < options.max_rounds && report->planarity_max > options.target_delta;) {
+    ++report->rounds;
     ceres::Solver::Summary summary;
-    ceres::Solve(solver, &problem, &summary);
+    const double previous = report->planarity_max;
+    solve(on_surface, &summary);
     if (!summary.IsSolutionUsable()) return Status::Internal("planarize: Ceres failed: " + summary.message);
     for (int v = 0; v < nv; ++v)
       mesh.set_point(VertexHandle(v), {position[3 * v], position[3 * v + 1], position[3 * v + 2]});
     Measure(mesh, extracted->origin, query, report);
-    report->ceres.push_back({{"round", report->rounds}, {"planarity_weight", planarity_weight},
+    report->iterations += static_cast<int>(summary.iterations.size()) - 1;
+    report->ceres.push_back({{"round", report->rounds}, {"on_surface", on_surface}, {"planarity_weight", planarity_weight},
+                             {"closeness_weight", on_surface ? 0.0 : closeness_weight},
                              {"iterations", summary.iterations.size() - 1}, {"initial_cost", summary.initial_cost},
                              {"final_cost", summary.final_cost}, {"planarity_max", report->planarity_max},
                              {"closeness_max", report->closeness_max}, {"seconds", summary.total_time_in_seconds}});
-    LOG(INFO) << "planarize: round " << report->rounds << ": δ max " << report->planarity_max << ", mean "
-              << report->planarity_mean << ", closeness max " << report->closeness_max << " m ("
-              << summary.iterations.size() - 1 << " iterations)";
-    planarity_weight *= 4.0;
-    closeness_weight *= 2.0;
-    boundary_weight *= 2.0;
+    LOG(INFO) << "planarize: round " << report->rounds << (on_surface ? " (on the surface)" : " (closeness penalty)")
+              << ": δ max " << report->planarity_max << ", mean " << report->planarity_mean << ", closeness max "
+              << report->closeness_max << " m (" << summary.iterations.size() - 1 << " iterations, "
+              << summary.total_time_in_seconds << " s)";
+    if (on_surface && report->planarity_max > 0.5 * previous) {
+      on_surface = false;  // stalled on the creases of the reference: let the vertices off it
+    } else {
+      planarity_weight *= kPlanarityRaise;
+      closeness_weight *= kClosenessRaise;
+      boundary_weight *= kClosenessRaise;
+    }
   }
   for (int v = 0; v < nv; ++v)
     report->max_displacement = std::max(report->max_displacement, (ToEigen(mesh.point(VertexHandle(v))) - start[v]).norm());
+  double edge_sum = 0.0;
+  for (const auto e : mesh.edges()) {
+    const auto he = mesh.halfedge_handle(e, 0);
+    edge_sum += (start[mesh.to_vertex_handle(he).idx()] - start[mesh.from_vertex_handle(he).idx()]).norm();
+  }
+  if (edge_sum > 0.0) report->max_displacement_edges = report->max_displacement / (edge_sum / mesh.n_edges());
   return Status::Ok();
 }
 

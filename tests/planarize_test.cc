@@ -9,10 +9,12 @@
 
 #include "geometry/planarity.h"
 #include "problems/planarize.h"
+#include "problems/residuals/anchor_residual.h"
 #include "problems/residuals/boundary_residual.h"
 #include "problems/residuals/closeness_residual.h"
 #include "problems/residuals/fairness_residual.h"
 #include "problems/residuals/planarity_residual.h"
+#include "problems/residuals/surface_chart_manifold.h"
 #include "tests/gradient_check.h"
 #include "tests/test_meshes.h"
 
@@ -50,18 +52,63 @@ std::vector<double> RandomBlock(int n) {
   return b;
 }
 
+// A gently curved reference over [0, 6]²: z = 0.3 sin(x) cos(0.7 y).
+SurfaceModel WavyReference() {
+  return SurfaceModel(testing::ToMesh(
+      testing::GridSoup(12, [](double x, double y) { return 0.3 * std::sin(x) * std::cos(0.7 * y); })));
+}
+
 TEST(PlanarizeResiduals, GradientCheckAtRandomPoints) {
-  ceres::SphereManifold<3> sphere;
+  const SurfaceModel reference = WavyReference();
+  const ClosestPointQuery query(reference);
+  ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>> plane_manifold;
   for (int trial = 0; trial < 20; ++trial) {
     Eigen::Vector3d n = Eigen::Vector3d::Random().normalized();
-    const std::vector<const ceres::Manifold*> planarity_manifolds{&sphere, nullptr, nullptr};
+    const std::vector<const ceres::Manifold*> planarity_manifolds{&plane_manifold, nullptr};
     Check("planarity", PlanarityResidual::Create(Uniform(0.5, 5), Uniform(1, 4)),
-          {{n.x(), n.y(), n.z()}, RandomBlock(1), RandomBlock(3)}, &planarity_manifolds);
-    Check("closeness", ClosenessResidual::Create(Eigen::Vector3d::Random(), Eigen::Vector3d::Random(), 2.0, 3.0),
-          {RandomBlock(3)});
-    Check("boundary", BoundaryResidual::Create(Eigen::Vector3d::Random(), Eigen::Vector3d::Random(), 2.0, 3.0),
-          {RandomBlock(3)});
+          {{n.x(), n.y(), n.z(), Uniform(-2, 2)}, RandomBlock(3)}, &planarity_manifolds);
+    // Off the middle of a random reference triangle along its normal (the closest point is
+    // then inside that triangle, where the distance is smooth).
+    const int t = static_cast<int>(Uniform(0, reference.num_faces() - 1));
+    const auto ids = reference.face_vertices(t);
+    const Eigen::Vector3d centre = (reference.position(ids[0]) + reference.position(ids[1]) + reference.position(ids[2])) / 3.0;
+    const Eigen::Vector3d p = centre + Uniform(-0.05, 0.05) * reference.face_normal(t);
+    Check("closeness", new ClosenessResidual(&query, 2.0, 3.0), {{p.x(), p.y(), p.z()}});
+    // Near the middle of an edge of the boundary y = 0 (its vertices are 0.5 m apart).
+    const double middle = 0.5 * static_cast<int>(Uniform(1, 10)) + 0.25;
+    Check("boundary", new BoundaryResidual(&query, 2.0, 3.0),
+          {{middle + Uniform(-0.05, 0.05), Uniform(-0.05, 0.05), 0.3 * std::sin(middle) + Uniform(-0.05, 0.05)}});
+    Check("anchor", AnchorResidual::Create(Eigen::Vector3d::Random(), 2.0, 3.0), {RandomBlock(3)});
     Check("fairness", FairnessResidual::Create(0.3, 3.0), {RandomBlock(3), RandomBlock(3), RandomBlock(3)});
+  }
+}
+
+TEST(SurfaceManifold, StepsStayOnTheReferenceAndPlusJacobianIsTheTangentBasis) {
+  const SurfaceModel reference = WavyReference();
+  const ClosestPointQuery query(reference);
+  const SurfaceManifold inside(&query, false), boundary(&query, true);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Vector3d x = query.OnSurface({Uniform(1, 5), Uniform(1, 5), 0.0}).point;
+    const double delta[2] = {Uniform(-1, 1), Uniform(-1, 1)};
+    Eigen::Vector3d y;
+    ASSERT_TRUE(inside.Plus(x.data(), delta, y.data()));
+    EXPECT_LT(query.OnSurface(y).distance, 1e-12);
+    // At δ = 0 the Jacobian of Plus is the basis of the triangle's plane: orthonormal and
+    // perpendicular to the triangle's normal.
+    double jacobian[6];
+    ASSERT_TRUE(inside.PlusJacobian(x.data(), jacobian));
+    const Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> B(jacobian);
+    EXPECT_NEAR((B.transpose() * B - Eigen::Matrix2d::Identity()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((B.transpose() * query.OnSurface(x).normal).norm(), 0.0, 1e-12);
+    // A small step is the tangent step (no retraction needed inside the triangle).
+    const double tiny[2] = {1e-7, -2e-7};
+    ASSERT_TRUE(inside.Plus(x.data(), tiny, y.data()));
+    EXPECT_NEAR((y - x - B * Eigen::Vector2d(tiny[0], tiny[1])).norm(), 0.0, 1e-12);
+    // A boundary vertex slides along the boundary polyline.
+    const Eigen::Vector3d b = query.OnBoundary({Uniform(1, 5), 0.0, 0.0}).point;
+    const double along = Uniform(-3, 3);
+    ASSERT_TRUE(boundary.Plus(b.data(), &along, y.data()));
+    EXPECT_LT(query.OnBoundary(y).distance, 1e-12);
   }
 }
 
@@ -91,9 +138,11 @@ TEST(Planarize, NoisyPlanarGridReturnsToItsPlane) {
   const SurfaceModel reference(testing::ToMesh(testing::GridSoup(6, flat)));
   ExtractedMesh grid = QuadGrid(6, 6, 1.0, flat);
   for (const auto v : grid.mesh.vertices()) {
-    if (grid.origin[v.idx()].corner) continue;
+    if (grid.origin[v.idx()].on_boundary) continue;
     auto p = grid.mesh.point(v);
-    p[2] += Uniform(-0.05, 0.05);
+    p[0] += Uniform(-0.1, 0.1);  // along the plane
+    p[1] += Uniform(-0.1, 0.1);
+    p[2] += Uniform(-0.05, 0.05);  // off it
     grid.mesh.set_point(v, p);
   }
   PlanarizeOptions options;
@@ -102,6 +151,8 @@ TEST(Planarize, NoisyPlanarGridReturnsToItsPlane) {
   ASSERT_TRUE(PlanarizeMesh(reference, options, 1.0, &grid, &report).ok());
   EXPECT_LE(report.planarity_max, 1e-6);
   EXPECT_LE(report.closeness_max, 1e-6 * 6.0);
+  for (const auto v : grid.mesh.vertices()) EXPECT_NEAR(grid.mesh.point(v)[2], 0.0, 1e-6 * 6.0);
+  EXPECT_LE(report.max_displacement, 0.1);  // the noise, no more: the grid was planar already
 }
 
 TEST(Planarize, QuadStripOnACylinderBecomesPlanarAndStaysOnIt) {
@@ -127,9 +178,11 @@ TEST(Planarize, QuadStripOnACylinderBecomesPlanarAndStaysOnIt) {
   PlanarizeReport report;
   ASSERT_TRUE(PlanarizeMesh(cylinder, PlanarizeOptions(), h, &strip, &report).ok());
   EXPECT_LE(report.planarity_max, 1e-3);
-  // Issue 6 asks for 1e-3 h; measured 2.2e-3 m so far (the P1 reference's own chord error
-  // is 6e-4 m): this bound guards against regressions until the target is met.
-  EXPECT_LE(report.closeness_max, 3e-3 * h);
+  EXPECT_LE(report.closeness_max, 1e-3 * h);  // to the reference triangle mesh
+  for (const auto v : strip.mesh.vertices()) {  // to the cylinder itself (the mesh's chord error is 6e-4 m)
+    const auto p = strip.mesh.point(v);
+    EXPECT_LE(std::abs(std::hypot(p[0] - 3.0, p[2]) - R), 1e-3 * h);
+  }
   EXPECT_GE(report.rounds, 1);  // it really had work to do
   std::cout << "cylinder strip: δ max " << report.planarity_max << ", closeness max " << report.closeness_max
             << " m after " << report.rounds << " rounds\n";

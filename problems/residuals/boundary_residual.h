@@ -1,7 +1,10 @@
-// Boundary (per vertex v on the reference boundary): the vertex stays on the boundary
-// polyline, measured to the line through its closest boundary point c_v with tangent t
-// (refreshed between solves):
-//   r_v = √w · ((p_v − c_v) − ((p_v − c_v) · t) t) / h        (3 components)
+// Boundary (per vertex v on the reference boundary, corners excepted — they are fixed): the
+// vertex stays on the reference boundary polylines. The vector from the closest boundary
+// point c(p) (found afresh at every evaluation) to p_v:
+//   r_v = √w · (p_v − c(p_v)) / h                               (3 components)
+//   ∂r/∂p = √w (I − t tᵀ) / h   where c lies inside a boundary edge of tangent t,
+//           √w I / h            where c is a polyline vertex.
+// So the vertex may slide along the boundary, across any number of boundary edges.
 // Parameters: p_v (3).
 #pragma once
 
@@ -9,29 +12,31 @@
 
 #include <cmath>
 
+#include "geometry/closest_point.h"
+
 namespace pqlayout {
 
-struct BoundaryResidual {
-  BoundaryResidual(const Eigen::Vector3d& closest, const Eigen::Vector3d& tangent, double weight, double spacing)
-      : c(closest), t(tangent.normalized()), scale(std::sqrt(weight) / spacing) {}
+class BoundaryResidual final : public ceres::SizedCostFunction<3, 3> {
+ public:
+  // query must outlive the residual.
+  BoundaryResidual(const ClosestPointQuery* query, double weight, double spacing)
+      : query_(query), scale_(std::sqrt(weight) / spacing) {}
 
-  template <typename T>
-  bool operator()(const T* const p, T* residual) const {
-    const T dx = p[0] - T(c.x()), dy = p[1] - T(c.y()), dz = p[2] - T(c.z());
-    const T along = dx * T(t.x()) + dy * T(t.y()) + dz * T(t.z());
-    residual[0] = T(scale) * (dx - along * T(t.x()));
-    residual[1] = T(scale) * (dy - along * T(t.y()));
-    residual[2] = T(scale) * (dz - along * T(t.z()));
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Vector3d p(parameters[0][0], parameters[0][1], parameters[0][2]);
+    const SurfacePoint c = query_->OnBoundary(p);
+    for (int k = 0; k < 3; ++k) residuals[k] = scale_ * (p[k] - c.point[k]);
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> jacobian(jacobians[0]);
+      jacobian = scale_ * Eigen::Matrix3d::Identity();
+      if (c.inside_edge) jacobian -= scale_ * c.tangent * c.tangent.transpose();
+    }
     return true;
   }
 
-  static ceres::CostFunction* Create(const Eigen::Vector3d& closest, const Eigen::Vector3d& tangent, double weight,
-                                     double spacing) {
-    return new ceres::AutoDiffCostFunction<BoundaryResidual, 3, 3>(new BoundaryResidual(closest, tangent, weight, spacing));
-  }
-
-  const Eigen::Vector3d c, t;
-  const double scale;
+ private:
+  const ClosestPointQuery* query_;
+  const double scale_;
 };
 
 }  // namespace pqlayout

@@ -1,46 +1,46 @@
-// Closeness (per vertex v): the vertex stays on the reference surface. With c_v its closest
-// point on the reference (refreshed between solves) and n_c the surface normal there,
-//   r_v = √w · [ (p_v − c_v) · n_c,  √τ (p_v − c_v) · t1,  √τ (p_v − c_v) · t2 ] / h
-// (t1, t2 span the tangent plane). The normal component holds the vertex on the surface;
-// the weak tangential one (τ = 0.1) keeps each round's step proximal, so planarity can
-// slide vertices along the surface but not drag them away. Parameters: p_v (3).
+// Closeness (per vertex v): the vertex stays on the reference surface. The signed distance
+// from p_v to the reference triangle mesh, its closest point c(p) found afresh (CGAL AABB
+// tree) at every evaluation, not once per solve:
+//   r_v = √w · s · |p_v − c(p_v)| / h,   s = sign((p_v − c) · n_c)
+//   ∂r/∂p = √w · s (p_v − c) / |p_v − c| / h   (the gradient of the distance; n_c on the surface)
+// with n_c the normal of the closest triangle. Exact, so a vertex may slide across any
+// number of reference triangles within one solve and the solver still sees the surface, not
+// a tangent plane that is only right near where the solve started. Only the distance is
+// penalised: sliding along the surface is free here (the anchor term keeps it small).
+// Parameters: p_v (3).
 #pragma once
 
 #include <ceres/ceres.h>
 
 #include <cmath>
 
+#include "geometry/closest_point.h"
+
 namespace pqlayout {
 
-struct ClosenessResidual {
-  static constexpr double kTangentialWeight = 0.1;  // τ
+class ClosenessResidual final : public ceres::SizedCostFunction<1, 3> {
+ public:
+  // query must outlive the residual.
+  ClosenessResidual(const ClosestPointQuery* query, double weight, double spacing)
+      : query_(query), scale_(std::sqrt(weight) / spacing) {}
 
-  ClosenessResidual(const Eigen::Vector3d& closest, const Eigen::Vector3d& normal, double weight, double spacing)
-      : c(closest), scale(std::sqrt(weight) / spacing) {
-    const Eigen::Vector3d n = normal.normalized();
-    const Eigen::Vector3d axis = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-    const Eigen::Vector3d t1 = n.cross(axis).normalized(), t2 = n.cross(t1);
-    frame.row(0) = n;
-    frame.row(1) = std::sqrt(kTangentialWeight) * t1;
-    frame.row(2) = std::sqrt(kTangentialWeight) * t2;
-  }
-
-  template <typename T>
-  bool operator()(const T* const p, T* residual) const {
-    const T d[3] = {p[0] - T(c.x()), p[1] - T(c.y()), p[2] - T(c.z())};
-    for (int r = 0; r < 3; ++r)
-      residual[r] = T(scale) * (T(frame(r, 0)) * d[0] + T(frame(r, 1)) * d[1] + T(frame(r, 2)) * d[2]);
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Vector3d p(parameters[0][0], parameters[0][1], parameters[0][2]);
+    const SurfacePoint c = query_->OnSurface(p);
+    const Eigen::Vector3d offset = p - c.point;
+    const double sign = offset.dot(c.normal) < 0.0 ? -1.0 : 1.0;
+    const double distance = offset.norm();
+    residuals[0] = scale_ * sign * distance;
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      const Eigen::Vector3d gradient = distance > 1e-12 ? Eigen::Vector3d(sign * offset / distance) : c.normal;
+      for (int k = 0; k < 3; ++k) jacobians[0][k] = scale_ * gradient[k];
+    }
     return true;
   }
 
-  static ceres::CostFunction* Create(const Eigen::Vector3d& closest, const Eigen::Vector3d& normal, double weight,
-                                     double spacing) {
-    return new ceres::AutoDiffCostFunction<ClosenessResidual, 3, 3>(new ClosenessResidual(closest, normal, weight, spacing));
-  }
-
-  const Eigen::Vector3d c;
-  const double scale;
-  Eigen::Matrix3d frame;
+ private:
+  const ClosestPointQuery* query_;
+  const double scale_;
 };
 
 }  // namespace pqlayout

@@ -1,0 +1,114 @@
+// Planarisation (issue 6). Inputs:
+//  - the peer's lifted grid: grid lines x = 3i, y = 3j through the Reading Room centre, the
+//    quads whose four corners lie in the Great Court domain, z from the SPEC formula (648
+//    vertices, 560 quads, initial δ max 0.108); reference = the great_court generator at
+//    1.5 m (the example's surface). libigl's ShapeUp needs 3.5 s and moves vertices up to 0.9
+//    mean edge lengths on it (planarity only, no closeness).
+//  - the project's own layouts: examples/great_court.yaml run up to `extract` (strain
+//    guidance) at h = 3 m and 1.5 m; the setup runs the earlier stages once.
+// Counters: δ max, closeness max (m), largest vertex movement (mean edge lengths), Ceres
+// iterations. Each repetition is one PlanarizeMesh call on a fresh copy; report the minimum.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "geometry/surface_generators.h"
+#include "problems/planarize.h"
+#include "problems/stages.h"
+
+namespace pqlayout {
+namespace {
+
+struct Input {
+  std::unique_ptr<SurfaceModel> reference;
+  ExtractedMesh mesh;
+  PlanarizeOptions options;
+  double h = 3.0;
+};
+
+Input LiftedGrid() {
+  Input in;
+  GeneratorParams params;
+  params.name = "great_court";
+  params.edge_length = 1.5;
+  TriMesh tri;
+  if (!GenerateSurface(params, &tri).ok()) std::abort();
+  in.reference = std::make_unique<SurfaceModel>(std::move(tri));
+  using D = GreatCourtDimensions;
+  auto inside = [](double x, double y) {
+    return x >= -D::b && x <= D::b && y >= -D::d && y <= D::c && std::hypot(x, y) >= D::a;
+  };
+  std::map<std::pair<int, int>, VertexHandle> ids;
+  for (int j = -20; j <= 20; ++j)
+    for (int i = -20; i <= 20; ++i) {
+      const double x = 3.0 * i, y = 3.0 * j;
+      if (!(inside(x, y) && inside(x + 3, y) && inside(x + 3, y + 3) && inside(x, y + 3))) continue;
+      std::vector<VertexHandle> quad;
+      for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
+        const auto key = std::make_pair(i + di, j + dj);
+        if (!ids.count(key)) {
+          const double cx = 3.0 * key.first, cy = 3.0 * key.second;
+          ids[key] = in.mesh.mesh.add_vertex({cx, cy, GreatCourtHeight(cx, cy)});
+          in.mesh.origin.push_back({});  // free: neither on the reference boundary nor a corner
+        }
+        quad.push_back(ids[key]);
+      }
+      in.mesh.mesh.add_face(quad);
+    }
+  return in;
+}
+
+Input GreatCourtLayout(double spacing) {
+  Input in;
+  PipelineState state;
+  if (!LoadConfig(PQ_SOURCE_DIR "/examples/great_court.yaml", {"layout.spacing=" + std::to_string(spacing)},
+                  &state.config)
+           .ok())
+    std::abort();
+  std::unique_ptr<OutputFiles> out;
+  nlohmann::json metrics;
+  if (!OutputFiles::Open("/tmp/pqlayout_planarize_benchmark", &out).ok()) std::abort();
+  for (auto stage : {&RunSurfaceStage, &RunMembraneStage, &RunGuidanceStage, &RunLevelsetStage, &RunExtractStage})
+    if (!stage(&state, out.get(), &metrics).ok()) std::abort();
+  in.mesh = state.quads;
+  in.reference = std::move(state.surface);
+  in.options = state.config.planarize;
+  in.h = spacing;
+  return in;
+}
+
+void Run(benchmark::State& state, const Input& in) {
+  PlanarizeReport report;
+  for (auto _ : state) {
+    ExtractedMesh mesh = in.mesh;
+    report = PlanarizeReport();
+    if (!PlanarizeMesh(*in.reference, in.options, in.h, &mesh, &report).ok()) state.SkipWithError("planarize failed");
+  }
+  state.counters["faces"] = in.mesh.mesh.n_faces();
+  state.counters["delta_max"] = report.planarity_max;
+  state.counters["closeness_max_m"] = report.closeness_max;
+  state.counters["moved_edges"] = report.max_displacement_edges;
+  state.counters["iterations"] = report.iterations;
+}
+
+void BM_PlanarizeLiftedGrid(benchmark::State& state) {
+  static const Input in = LiftedGrid();
+  Run(state, in);
+}
+BENCHMARK(BM_PlanarizeLiftedGrid)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(5)
+    ->ComputeStatistics("min", [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); });
+
+// Argument: h in cm.
+void BM_PlanarizeGreatCourtLayout(benchmark::State& state) {
+  static std::map<int, Input> inputs;
+  if (!inputs.count(state.range(0))) inputs.emplace(state.range(0), GreatCourtLayout(state.range(0) / 100.0));
+  Run(state, inputs.at(state.range(0)));
+}
+BENCHMARK(BM_PlanarizeGreatCourtLayout)->Arg(300)->Arg(150)->Unit(benchmark::kMillisecond)->Iterations(1)
+    ->Repetitions(3)
+    ->ComputeStatistics("min", [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); });
+
+}  // namespace
+}  // namespace pqlayout
