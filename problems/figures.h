@@ -23,6 +23,7 @@
 #include "geometry/mesh.h"
 #include "geometry/status.h"
 #include "geometry/surface_model.h"
+#include "geometry/svg_canvas.h"
 
 namespace pqlayout {
 
@@ -77,5 +78,43 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
 Status WriteComplianceFigure(const SurfaceModel& surface, const PolyMesh& mesh,
                              const std::vector<double>& nodal_compliance, double scale_max,
                              const std::string& title, const std::string& path, const FigureOptions& options = {});
+
+// Line width (px of a 1000 px drawing) of mesh edges (grid-shell members) whose mean length
+// on the drawing is `mean_edge_px` (px of a 1000 px drawing): 5 % of it, between 0.3 and
+// 1.2 px, and 0 (edges not drawn, faces only) below 4 px, where lines would cover the faces.
+// So 300 faces get 1.2 px lines, 30,000 faces on the Great Court (~5 px edges) 0.3 px ones.
+double MeshLineWidth(double mean_edge_px);
+
+// The planarity colour scale shared by planarity_initial.svg, planarity.svg and
+// shell_3d.svg (paper Fig. 8/13): δ on a logarithmic scale two decades either side of the
+// target δ, diverging blue–white–red with white at the target: blue faces meet it, red ones
+// do not, and the same δ has the same colour before and after planarisation. δ below the
+// scale (triangles: δ = 0) takes the bottom colour, above it the top one.
+struct PlanarityScale {
+  static constexpr double kDecades = 2.0;  // either side of the target
+  double target = 1e-3;
+  double lo() const;
+  double hi() const;
+  Rgb Colour(double delta) const;
+};
+
+// Paper Fig. 8/13: top view of the quad mesh, each face filled with its planarity δ
+// (geometry/planarity.h) on PlanarityScale{target_delta}, edges as thin dark lines
+// (MeshLineWidth), reference outline, log colour bar "planarity δ" with the target marked,
+// legend with the number of faces meeting the target and δ max, scale bar, north arrow.
+// InvalidInput if target_delta is not a positive number or the mesh has no faces.
+Status WritePlanarityFigure(const SurfaceModel& surface, const PolyMesh& mesh, double target_delta,
+                            const std::string& title, const std::string& path,
+                            const FigureOptions& options = {});
+
+// Oblique 3D view of the grid shell: orthographic projection seen from the south-west
+// (azimuth 240°, 35° above the horizon), faces drawn back to front (painter's order by
+// centroid depth) in their planarity colour (PlanarityScale), lightly shaded by their
+// orientation (×0.8–1), edges as in WritePlanarityFigure; the reference footprint in light
+// grey on the ground (lowest z) below; axis triad (E, N, up) instead of a north arrow; the
+// scale bar holds along the drawing's horizontal. InvalidInput as WritePlanarityFigure.
+Status WriteShell3dFigure(const SurfaceModel& surface, const PolyMesh& mesh, double target_delta,
+                          const std::string& title, const std::string& path,
+                          const FigureOptions& options = {});
 
 }  // namespace pqlayout

@@ -6,6 +6,7 @@ packages=(
   libceres-dev libeigen3-dev libsuitesparse-dev libopenmesh-dev libgoogle-glog-dev libgflags-dev
   libyaml-cpp-dev libcgal-dev libgmp-dev libmpfr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium               # headless browser for the report check (tests/report_check_test, scripts/check_report.sh)
   libopenblas0-pthread   # optimised BLAS for CHOLMOD's supernodal factorisation (replaces ATLAS via alternatives)
 )
 missing=()
