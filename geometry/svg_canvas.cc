@@ -250,7 +250,7 @@ void SvgCanvas::Boxes(const std::vector<Eigen::AlignedBox2d>& boxes, Rgb fill) {
   CloseFaceGroup();
   const std::string colour = fill.Hex();
   body_ += "<path fill=\"" + colour + "\" stroke=\"" + colour + "\" stroke-width=\"" +
-           Number(SvgStyle::kFaceSeamWidth * unit(), 2) + "\" d=\"";
+           Number(SvgStyle::kBoxSeamWidth * unit(), 2) + "\" d=\"";
   for (const auto& box : boxes) {
     const Eigen::Vector2d a = ToPx({box.min().x(), box.max().y()});
     const Eigen::Vector2d b = ToPx({box.max().x(), box.min().y()});

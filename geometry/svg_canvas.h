@@ -56,6 +56,7 @@ struct SvgStyle {
   static constexpr double kSwatchHeight = 16.0;         // legend swatch
   static constexpr double kOutlineWidth = 1.6;          // boundary outline stroke
   static constexpr double kFaceSeamWidth = 0.5;         // same-colour stroke hiding AA seams
+  static constexpr double kBoxSeamWidth = 1.0;          // the same for grid boxes (cells ≥ 2 px)
   static constexpr double kHatchSpacing = 8.0;          // hatch pattern period
   static constexpr double kHatchWidth = 1.4;            // hatch line width
   static constexpr double kHatchOpacity = 0.7;          // opacity of the hatch background

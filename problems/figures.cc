@@ -75,12 +75,23 @@ std::pair<int, int> CentresWithin(double lo, double hi, int n) {
 
 double Cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+// A field to colour: one value per face, or one per vertex interpolated linearly inside
+// each triangle (vertex_values non-empty).
+struct FieldValues {
+  const std::vector<double>& face_values;
+  const std::vector<double>& vertex_values;
+};
+
 // Colour level (0..kColourLevels-1) of every grid cell whose centre lies in a face, -1
 // elsewhere; cells of size `cell` metres cover `box` row by row from its min corner.
-std::vector<int> RasteriseLevels(const SurfaceModel& surface,
-                                 const std::vector<double>& face_values, const ColourScale& scale,
-                                 const Eigen::AlignedBox2d& box, double cell, int nx, int ny) {
+std::vector<int> RasteriseLevels(const SurfaceModel& surface, const FieldValues& field,
+                                 const ColourScale& scale, const Eigen::AlignedBox2d& box,
+                                 double cell, int nx, int ny) {
   constexpr double kTolerance = 1e-9;  // centres on a shared edge belong to both faces
+  const bool smooth = !field.vertex_values.empty();
+  const auto level_of = [&](double value) {
+    return std::clamp(static_cast<int>(scale.T(value) * kColourLevels), 0, kColourLevels - 1);
+  };
   std::vector<int> level(static_cast<size_t>(nx) * ny, -1);
   for (int f = 0; f < surface.num_faces(); ++f) {
     const auto ids = surface.face_vertices(f);
@@ -91,29 +102,31 @@ std::vector<int> RasteriseLevels(const SurfaceModel& surface,
     const Vector2d hi = (a.cwiseMax(b).cwiseMax(c) - box.min()) / cell;
     const auto [i0, i1] = CentresWithin(lo.x(), hi.x(), nx);
     const auto [j0, j1] = CentresWithin(lo.y(), hi.y(), ny);
-    const int t =
-        std::clamp(static_cast<int>(scale.T(face_values[f]) * kColourLevels), 0, kColourLevels - 1);
+    const int flat = smooth ? 0 : level_of(field.face_values[f]);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         const Vector2d p = box.min() + cell * Vector2d(i + 0.5, j + 0.5);
         const double l0 = Cross(b - p, c - p) / area, l1 = Cross(c - p, a - p) / area;
         if (l0 >= -kTolerance && l1 >= -kTolerance && l0 + l1 <= 1.0 + kTolerance)
-          level[static_cast<size_t>(j) * nx + i] = t;
+          level[static_cast<size_t>(j) * nx + i] =
+              smooth ? level_of(l0 * field.vertex_values[ids[0]] + l1 * field.vertex_values[ids[1]] +
+                                (1.0 - l0 - l1) * field.vertex_values[ids[2]])
+                     : flat;
       }
   }
   return level;
 }
 
-// Resamples the face colours onto a grid of small squares and merges runs of equal colour
-// along each row into one box; one <path> per colour level.
-void DrawResampledColours(const SurfaceModel& surface, const std::vector<double>& face_values,
+// Resamples the field onto a grid of small squares and merges runs of equal colour along
+// each row into one box; one <path> per colour level.
+void DrawResampledColours(const SurfaceModel& surface, const FieldValues& field,
                           const ColourScale& scale, const FigureOptions& options,
                           SvgCanvas* canvas) {
   const Eigen::AlignedBox2d box = TopViewBounds(surface);
   const double cell = options.grid_cell_px * canvas->unit() / canvas->px_per_metre();
   const int nx = std::max(1, static_cast<int>(std::ceil(box.sizes().x() / cell)));
   const int ny = std::max(1, static_cast<int>(std::ceil(box.sizes().y() / cell)));
-  const std::vector<int> level = RasteriseLevels(surface, face_values, scale, box, cell, nx, ny);
+  const std::vector<int> level = RasteriseLevels(surface, field, scale, box, cell, nx, ny);
   std::vector<std::vector<Eigen::AlignedBox2d>> boxes(kColourLevels);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx;) {
@@ -134,7 +147,7 @@ void DrawFaceColours(const SurfaceModel& surface, const std::vector<double>& fac
   if (surface.num_faces() <= options.max_face_polygons)
     DrawFacePolygons(surface, face_values, scale, canvas);
   else
-    DrawResampledColours(surface, face_values, scale, options, canvas);
+    DrawResampledColours(surface, {face_values, {}}, scale, options, canvas);
 }
 
 // The outline of a set of faces as closed rings (outer rings and holes), walking the
@@ -271,15 +284,13 @@ Status WriteDisplacementFigure(const SurfaceModel& surface, const std::vector<do
                                const std::string& title, const std::string& path,
                                const FigureOptions& options) {
   PQ_RETURN_IF_ERROR(CheckFinite(v_z, surface.num_vertices(), "v_z", "vertex").WithContext(path));
-  std::vector<double> vertex_mm(v_z.size()), face_mm(surface.num_faces());
+  std::vector<double> vertex_mm(v_z.size());
   std::transform(v_z.begin(), v_z.end(), vertex_mm.begin(), [](double v) { return 1000.0 * v; });
-  for (int f = 0; f < surface.num_faces(); ++f) {
-    const auto ids = surface.face_vertices(f);
-    face_mm[f] = (vertex_mm[ids[0]] + vertex_mm[ids[1]] + vertex_mm[ids[2]]) / 3.0;
-  }
   const ColourScale scale = ScaleFor(vertex_mm, /*allow_diverging=*/true);
   SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
-  DrawFaceColours(surface, face_mm, scale, options, &canvas);
+  // A vertex field: always resampled with linear interpolation inside each triangle, so the
+  // map is smooth (64 colour bands, like contours) whatever the face count.
+  DrawResampledColours(surface, {{}, vertex_mm}, scale, options, &canvas);
   DrawFrame(surface, scale, "v_z [mm]", &canvas);
   return canvas.Write(path);
 }

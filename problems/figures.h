@@ -1,18 +1,24 @@
 // Figure compositions for the pipeline stages, drawn as self-contained SVG top views
 // (SvgCanvas): the membrane displacement v_z (paper Fig. 3) and the guidance field with
 // its integral curves and the regions where alignment is not enforced (paper Fig. 6), and
-// the level lines of the layout's two functions φ, ψ over the guidance (paper Figs. 7, 12).
+// the level lines of the layout's two functions φ, ψ over the guidance (paper Figs. 7, 12),
+// and of the grid shell: planarity δ before/after planarisation (Fig. 8/13) and as an
+// oblique 3D view, nodal compliance (Fig. 9/14).
 //
-// Size: up to FigureOptions::max_face_polygons faces every face is one <path> element
+// Size: face fields of the reference (guidance magnitude): up to
+// FigureOptions::max_face_polygons faces every face is one <path> element
 // (~65 bytes); above, faces are too small to see one by one anyway (200k faces on a
 // 1000 px drawing are ~2 px each), so the colour field is resampled onto a regular grid
 // of grid_cell_px squares in the top view, quantised to 64 colour levels, and runs of
-// equal colour along a row are merged into one box. Regions (the low-weight faces) are
+// equal colour along a row are merged into one box. Vertex fields (v_z) always take the
+// grid path, interpolated linearly inside each triangle. Regions (the low-weight faces) are
 // drawn as their merged outline, streamlines at a density set in px. A 1M-triangle input
 // thus gives a file of a few MB, independent of the face count. Level lines are one path
 // per family with one subpath per chained line (geometry/level_lines.h), points closer than
 // 0.6 px dropped, and at most one line per few px: their size depends on the drawing and
-// the spacing h, not on the face count.
+// the spacing h, not on the face count. Grid-shell figures draw every face (their count is
+// set by h: hundreds to tens of thousands); member lines thin out and disappear as the
+// faces get small on the drawing (MeshLineWidth).
 #pragma once
 
 #include <string>
@@ -34,8 +40,9 @@ struct FigureOptions {
   double streamline_spacing_px = 16.0;  // distance between integral curves (px of 1000 px)
 };
 
-// Paper Fig. 3: top view, v_z per vertex (metres) as a colour map (faces coloured by the
-// mean of their vertices; values of both signs use a diverging map symmetric about 0,
+// Paper Fig. 3: top view, v_z per vertex (metres) as a smooth colour map (always resampled
+// onto the grid, interpolated linearly inside each triangle, 64 colour bands: no faceting
+// at any face count; values of both signs use a diverging map symmetric about 0,
 // one-signed values viridis), colour bar "v_z [mm]", title, scale bar, north arrow,
 // boundary outline in black. InvalidInput if v_z does not have one finite value per vertex.
 Status WriteDisplacementFigure(const SurfaceModel& surface, const std::vector<double>& v_z,

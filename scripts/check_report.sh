@@ -15,7 +15,8 @@
 # height (window 1280 px wide) and the PNG itself is loaded back into Chromium (as a data:
 # URL, so the canvas can read it) to check it has at least MIN_PAGE_INK non-white pixels
 # and MIN_PAGE_COLOURS distinct colours. Exit 0 if all is well, 1 if a check fails, 2 on
-# bad usage or if Chromium cannot be run. CHROMIUM overrides the browser binary.
+# bad usage or if Chromium cannot be run. CHROMIUM overrides the browser binary;
+# SCREENSHOT_SCALE (default 1) scales the screenshot's pixels (0.5: half size, for docs).
 set -euo pipefail
 
 MIN_WIDTH=200        # rendered figure size on the page, CSS px
@@ -90,6 +91,7 @@ done < "$tmp/figures.txt"
 height=$(grep -o 'data-page-height="[0-9]*"' "$tmp/dom.html" | grep -o '[0-9]*' || echo 4000)
 height=$(( height < 16000 ? height : 16000 ))
 "$chromium" "${flags[@]}" --hide-scrollbars --window-size=$WINDOW_WIDTH,$height \
+  --force-device-scale-factor="${SCREENSHOT_SCALE:-1}" \
   --screenshot="$shot" "file://$report" 2>"$tmp/chromium.log" >/dev/null || {
   echo "FAIL $1: chromium could not take a screenshot"; tail -5 "$tmp/chromium.log"; exit 1; }
 [ -s "$shot" ] || { echo "FAIL $1: no screenshot written"; exit 1; }

@@ -16,6 +16,7 @@
 #include <iostream>
 #include <random>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "geometry/level_lines.h"
@@ -375,12 +376,23 @@ void ExpectSvgDocument(const std::string& svg) {
   EXPECT_EQ(Count(svg, "<svg"), 1);
 }
 
-TEST_F(SmallMeshFigures, DisplacementFigureHasOnePathPerFaceAndTheColourBarLabel) {
+// v_z is a vertex field: drawn as a smooth raster (boxes, linear inside each triangle), so
+// there are more colour bands than faces' worth of flat colours would give.
+TEST_F(SmallMeshFigures, DisplacementFigureIsSmoothAndHasTheColourBarLabel) {
   const std::string path = testing::TempDir() + "/displacement.svg";
   ASSERT_TRUE(WriteDisplacementFigure(surface_, v_z_, "Fig. 3: v_z under dead load", path).ok());
   const std::string svg = ReadText(path);
   ExpectSvgDocument(svg);
-  EXPECT_EQ(Count(svg, "<path color="), surface_.num_faces());
+  EXPECT_EQ(Count(svg, "<path color="), 0);
+  // v_z ranges over [-4 mm, 0]; interpolated, every one of the 64 bands appears (the 32
+  // faces' means alone would give at most 32 colours).
+  std::set<std::string> fills;
+  const std::regex box("<path fill=\"(#[0-9a-f]{6})\" stroke=\"#[0-9a-f]{6}\" stroke-width=\"[0-9.]+\" d=\"M");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), box); it != std::sregex_iterator(); ++it)
+    fills.insert((*it)[1]);
+  EXPECT_GE(fills.size(), 60u);
+  EXPECT_TRUE(fills.count(Viridis(0.5 / 64).Hex()));   // the band of the minimum, -4 mm
+  EXPECT_TRUE(fills.count(Viridis(63.5 / 64).Hex()));  // the band of the maximum, 0
   EXPECT_NE(svg.find("v_z [mm]"), std::string::npos);
   EXPECT_NE(svg.find("Fig. 3: v_z under dead load"), std::string::npos);
   EXPECT_NE(svg.find(">N</text>"), std::string::npos);  // north arrow
@@ -392,8 +404,8 @@ TEST_F(SmallMeshFigures, SignedDisplacementUsesTheDivergingMap) {
   const std::string path = testing::TempDir() + "/signed.svg";
   ASSERT_TRUE(WriteDisplacementFigure(surface_, v_z, "signed", path).ok());
   const std::string svg = ReadText(path);
-  EXPECT_NE(svg.find(BlueWhiteRed(0.0).Hex()), std::string::npos);
-  EXPECT_EQ(svg.find(Viridis(0.0).Hex()), std::string::npos);
+  EXPECT_NE(svg.find(BlueWhiteRed(0.5 / 64).Hex()), std::string::npos);  // -4 mm of ±4 mm
+  EXPECT_EQ(svg.find(Viridis(0.5 / 64).Hex()), std::string::npos);
 }
 
 TEST_F(SmallMeshFigures, GuidanceFigureHasLegendLabelAndStreamlines) {
@@ -412,8 +424,8 @@ TEST_F(SmallMeshFigures, GuidanceFigureHasLegendLabelAndStreamlines) {
 TEST_F(SmallMeshFigures, AboveTheFaceCapColoursAreResampledOntoAGrid) {
   const std::string path = testing::TempDir() + "/grid.svg";
   FigureOptions options;
-  options.max_face_polygons = 10;
-  ASSERT_TRUE(WriteDisplacementFigure(surface_, v_z_, "grid", path, options).ok());
+  options.max_face_polygons = 10;  // 32 faces: above the cap
+  ASSERT_TRUE(WriteGuidanceFigure(surface_, direction_, magnitude_, "|ε_max|", weight_, "grid", path, options).ok());
   const std::string svg = ReadText(path);
   ExpectSvgDocument(svg);
   EXPECT_EQ(Count(svg, "<path color="), 0);
