@@ -356,10 +356,21 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
   return canvas.Write(path);
 }
 
+namespace {
+constexpr double kMinEdgePx = 4.0;    // shorter edges on the drawing: no member lines
+constexpr double kOpaqueEdgePx = 15.0;  // from here on, lines at full opacity
+}  // namespace
+
 double MeshLineWidth(double mean_edge_px) {
-  constexpr double kMinEdgePx = 4.0, kRatio = 0.05, kMinWidth = 0.3, kMaxWidth = 1.2;
+  constexpr double kRatio = 0.05, kMinWidth = 0.3, kMaxWidth = 1.2;
   if (!(mean_edge_px >= kMinEdgePx)) return 0.0;
   return std::clamp(kRatio * mean_edge_px, kMinWidth, kMaxWidth);
+}
+
+double MeshLineOpacity(double mean_edge_px) {
+  constexpr double kMinOpacity = 0.35, kMaxOpacity = 0.9;
+  const double s = std::clamp((mean_edge_px - kMinEdgePx) / (kOpaqueEdgePx - kMinEdgePx), 0.0, 1.0);
+  return kMinOpacity + s * (kMaxOpacity - kMinOpacity);
 }
 
 double PlanarityScale::lo() const { return target * std::pow(10.0, -kDecades); }
@@ -372,7 +383,6 @@ Rgb PlanarityScale::Colour(double delta) const {
 namespace {
 
 const Rgb kMemberInk{0x28, 0x28, 0x28};  // grid-shell members
-constexpr double kMemberOpacity = 0.9;
 
 std::vector<Eigen::Vector3d> FacePoints(const PolyMesh& mesh, FaceHandle f) {
   std::vector<Eigen::Vector3d> points;
@@ -395,7 +405,7 @@ double MeanEdgeLength(const PolyMesh& mesh) {
 // The member stroke for this mesh on this canvas; width 0 if the members would be too dense.
 Stroke MemberStroke(const PolyMesh& mesh, const SvgCanvas& canvas) {
   const double edge_px = MeanEdgeLength(mesh) * canvas.px_per_metre() / canvas.unit();
-  return Stroke{kMemberInk, MeshLineWidth(edge_px), kMemberOpacity};
+  return Stroke{kMemberInk, MeshLineWidth(edge_px), MeshLineOpacity(edge_px)};
 }
 
 // Every edge of the mesh as a segment in the top view.

@@ -88,9 +88,11 @@ Status WriteComplianceFigure(const SurfaceModel& surface, const PolyMesh& mesh,
 
 // Line width (px of a 1000 px drawing) of mesh edges (grid-shell members) whose mean length
 // on the drawing is `mean_edge_px` (px of a 1000 px drawing): 5 % of it, between 0.3 and
-// 1.2 px, and 0 (edges not drawn, faces only) below 4 px, where lines would cover the faces.
-// So 300 faces get 1.2 px lines, 30,000 faces on the Great Court (~5 px edges) 0.3 px ones.
+// 1.2 px, and 0 (edges not drawn, faces only) below 4 px, where lines would cover the faces;
+// their opacity rises from 0.35 at 4 px to 0.9 at 15 px and above. So 300 faces on the Great
+// Court get opaque 1.2 px lines, 30,000 faces (~5 px edges) faint 0.3 px ones, 100,000 none.
 double MeshLineWidth(double mean_edge_px);
+double MeshLineOpacity(double mean_edge_px);
 
 // The planarity colour scale shared by planarity_initial.svg, planarity.svg and
 // shell_3d.svg (paper Fig. 8/13): δ on a logarithmic scale two decades either side of the

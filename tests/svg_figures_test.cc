@@ -661,6 +661,10 @@ TEST(MeshLineWidth, FollowsTheEdgeLengthOnTheDrawing) {
   EXPECT_DOUBLE_EQ(MeshLineWidth(10.0), 0.5);   // 5 % of the edge
   EXPECT_DOUBLE_EQ(MeshLineWidth(5.0), 0.3);    // floor
   EXPECT_DOUBLE_EQ(MeshLineWidth(3.9), 0.0);    // too dense to draw
+  EXPECT_DOUBLE_EQ(MeshLineOpacity(4.0), 0.35);
+  EXPECT_DOUBLE_EQ(MeshLineOpacity(9.5), 0.625);
+  EXPECT_DOUBLE_EQ(MeshLineOpacity(15.0), 0.9);
+  EXPECT_DOUBLE_EQ(MeshLineOpacity(100.0), 0.9);
 }
 
 // One planar unit square and one with a corner lifted by 0.1: δ = 0 and δ = distance between
@@ -727,20 +731,25 @@ TEST(Shell3dFigure, PaintersOrderDrawsTheNearerFaceLast) {
 // disappear at 100,000 faces; the integral curves of a constant field (the guidance
 // figure's glyphs) keep their spacing on the drawing, so their number does not change.
 TEST(FigureScaling, LineWidthsFollowTheFaceCountAndGlyphDensityTheDrawing) {
-  const auto member_width = [&](int n, double size) {
-    const PolyMesh mesh = FlatQuadGrid(n, size);
+  // (stroke-width, stroke-opacity) of the member lines, (0, 0) if none are drawn.
+  const auto member_stroke = [&](int n) {
+    const PolyMesh mesh = FlatQuadGrid(n, 1.0);
     const SurfaceModel reference(testing::ToMesh(testing::GridSoup(1, [](double, double) { return 0.0; })));
     const std::string path = testing::TempDir() + "/p" + std::to_string(n) + ".svg";
     EXPECT_TRUE(WritePlanarityFigure(reference, mesh, 1e-3, "p", path).ok());
     const std::string svg = ReadText(path);
     EXPECT_EQ(Count(svg, "<path color="), n * n);
-    const std::string width = Attribute(svg, "<path fill=\"none\" stroke=\"#282828\"", "stroke-width");
-    return width.empty() ? 0.0 : std::stod(width);
+    const std::string members = "<path fill=\"none\" stroke=\"#282828\"";
+    const std::string width = Attribute(svg, members, "stroke-width");
+    const std::string opacity = Attribute(svg, members, "stroke-opacity");
+    return width.empty() ? std::make_pair(0.0, 0.0) : std::make_pair(std::stod(width), std::stod(opacity));
   };
-  // The reference is the unit square [0, 1]²; the drawing is 1000 px wide (unit 1).
-  EXPECT_DOUBLE_EQ(member_width(17, 1.0), 1.2);   // 289 faces, edges ~49 px
-  EXPECT_DOUBLE_EQ(member_width(173, 1.0), 0.3);  // 29,929 faces, edges ~4.8 px
-  EXPECT_DOUBLE_EQ(member_width(316, 1.0), 0.0);  // 99,856 faces, edges ~2.6 px: none drawn
+  // The reference is the unit square [0, 1]², 834 px wide on the 1000 px drawing (unit 1).
+  EXPECT_EQ(member_stroke(17), std::make_pair(1.2, 0.9));    // 289 faces, edges ~49 px
+  const auto dense = member_stroke(173);                      // 29,929 faces, edges ~4.8 px
+  EXPECT_DOUBLE_EQ(dense.first, 0.3);
+  EXPECT_NEAR(dense.second, 0.35 + 0.55 * (834.0 / 173 - 4.0) / 11.0, 0.01);
+  EXPECT_EQ(member_stroke(316), std::make_pair(0.0, 0.0));   // 99,856 faces, edges ~2.6 px
 
   const auto streamline_count = [](int n) {
     const SurfaceModel surface(testing::ToMesh(testing::FlatGridSoup(n)));
