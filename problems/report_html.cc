@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <initializer_list>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -38,11 +39,21 @@ std::string Format(const nlohmann::json& value) {
   return value.dump();
 }
 
+// The value at json[key0][key1]..., null if any is absent (a const json's operator[] must
+// not be used on a missing key).
+const nlohmann::json& At(const nlohmann::json& json, std::initializer_list<std::string> path) {
+  static const nlohmann::json kNull;
+  const nlohmann::json* at = &json;
+  for (const auto& key : path) {
+    if (!at->is_object() || !at->contains(key)) return kNull;
+    at = &(*at)[key];
+  }
+  return *at;
+}
+
 // report["stages"][stage][key] formatted, "–" if absent.
 std::string Metric(const nlohmann::json& report, const std::string& stage, const std::string& key) {
-  const auto& stages = report["stages"];
-  if (!stages.contains(stage) || !stages[stage].contains(key)) return "–";
-  return Format(stages[stage][key]);
+  return Format(At(report, {"stages", stage, key}));
 }
 
 // The figures a run can produce, in the order of the paper, with the stage that writes each.
@@ -185,7 +196,7 @@ std::string FigureHtml(const std::filesystem::path& path, const std::string& nam
 }
 
 bool Completed(const nlohmann::json& report, const std::string& stage) {
-  for (const auto& name : report["run"].value("completed_stages", nlohmann::json::array()))
+  for (const auto& name : At(report, {"run", "completed_stages"}))
     if (name == stage) return true;
   return false;
 }
@@ -195,33 +206,32 @@ std::string Row(const std::string& key, const std::string& value) {
 }
 
 std::string Summary(const nlohmann::json& report) {
-  const auto& config = report["config"];
-  const auto& stages = report["stages"];
+  const auto& config = At(report, {"config"});
+  const auto& stages = At(report, {"stages"});
   std::string s = "<table>\n";
   if (stages.contains("surface")) {
-    const auto& sf = stages["surface"];
-    s += Row("surface", Format(sf["source"]) + ": " + Format(sf["n_faces"]) + " triangles, " +
-                            Format(sf["n_vertices"]) + " vertices, area " + Format(sf["area"]) + " m²");
+    const auto& sf = At(stages, {"surface"});
+    s += Row("surface", Format(At(sf, {"source"})) + ": " + Format(At(sf, {"n_faces"})) + " triangles, " +
+                            Format(At(sf, {"n_vertices"})) + " vertices, area " + Format(At(sf, {"area"})) + " m²");
     std::string supports;
-    const nlohmann::json conditions = sf.value("supports", nlohmann::json::object());
-    for (const auto& [condition, count] : conditions.items())
+    for (const auto& [condition, count] : At(sf, {"supports"}).items())
       supports += (supports.empty() ? "" : ", ") + Format(count) + " " + condition;
-    s += Row("supports", supports + " boundary vertices (default " + Format(config["boundary"]["default"]) +
-                             ", " + std::to_string(config["boundary"]["rules"].size()) + " rules)");
+    s += Row("supports", supports + " boundary vertices (default " + Format(At(config, {"boundary", "default"})) +
+                             ", " + std::to_string(At(config, {"boundary", "rules"}).size()) + " rules)");
   }
-  s += Row("dead load q", Format(config["load"]["q"]) + " N/m²");
-  s += Row("guidance", Format(config["guidance"]["source"]) + ", threshold " +
-                           Format(config["guidance"]["threshold"]));
-  s += Row("spacing h", Format(config["layout"]["spacing"]) + " m");
+  s += Row("dead load q", Format(At(config, {"load", "q"})) + " N/m²");
+  s += Row("guidance", Format(At(config, {"guidance", "source"})) + ", threshold " +
+                           Format(At(config, {"guidance", "threshold"})));
+  s += Row("spacing h", Format(At(config, {"layout", "spacing"})) + " m");
   if (stages.contains("extract"))
     s += Row("grid shell", Metric(report, "extract", "n_faces") + " faces (" +
                                Metric(report, "extract", "quad_fraction") + " quads), " +
                                Metric(report, "extract", "n_vertices") + " nodes, " +
                                Metric(report, "extract", "n_edges") + " members");
-  s += Row("pqlayout", Format(report["pqlayout"]["version"]) + " (git " +
-                           Format(report["pqlayout"]["git_revision"]) + ")");
-  s += Row("run", Format(report["run"]["started_at"]) + ", " + Format(report["run"]["total_seconds"]) +
-                      " s, config " + Format(report["run"]["config_file"]));
+  s += Row("pqlayout", Format(At(report, {"pqlayout", "version"})) + " (git " +
+                           Format(At(report, {"pqlayout", "git_revision"})) + ")");
+  s += Row("run", Format(At(report, {"run", "started_at"})) + ", " + Format(At(report, {"run", "total_seconds"})) +
+                      " s, config " + Format(At(report, {"run", "config_file"})));
   return s + "</table>\n";
 }
 
@@ -245,7 +255,7 @@ const KeyResult kKeyResults[] = {
 std::string KeyResults(const nlohmann::json& report) {
   std::string s = "<table><tr><th>result</th><th>value</th></tr>\n";
   for (const auto& k : kKeyResults)
-    if (report["stages"].contains(k.stage))
+    if (At(report, {"stages"}).contains(k.stage))
       s += "<tr><td>" + Escape(k.label) + "</td><td class=\"num\">" + Escape(Metric(report, k.stage, k.metric)) +
            "</td></tr>\n";
   return s + "</table>\n";
@@ -253,18 +263,23 @@ std::string KeyResults(const nlohmann::json& report) {
 
 std::vector<std::string> StagesInOrder(const nlohmann::json& report) {
   std::vector<std::string> names;
-  for (const auto& name : report["run"].value("completed_stages", nlohmann::json::array())) names.push_back(name);
+  for (const auto& name : At(report, {"run", "completed_stages"})) names.push_back(name);
   return names;
+}
+
+double Seconds(const nlohmann::json& report, const std::string& stage) {
+  const nlohmann::json& seconds = At(report, {"stages", stage, "seconds"});
+  return seconds.is_number() ? seconds.get<double>() : 0.0;
 }
 
 std::string Timings(const nlohmann::json& report) {
   double longest = 0.0;
   for (const auto& name : StagesInOrder(report))
-    longest = std::max(longest, report["stages"][name].value("seconds", 0.0));
+    longest = std::max(longest, Seconds(report, name));
   std::ostringstream s;
   s << "<table><tr><th>stage</th><th>seconds</th><th></th></tr>\n";
   for (const auto& name : StagesInOrder(report)) {
-    const double seconds = report["stages"][name].value("seconds", 0.0);
+    const double seconds = Seconds(report, name);
     s << "<tr><td>" << Escape(name) << "</td><td class=\"num\">" << Format(seconds)
       << "</td><td><span class=\"bar\" style=\"width:"
       << (longest > 0.0 ? static_cast<int>(120.0 * seconds / longest) : 0) << "px\"></span></td></tr>\n";
@@ -277,7 +292,7 @@ std::string MetricsTables(const nlohmann::json& report) {
   std::string s = "<div class=\"metrics\">\n";
   for (const auto& name : StagesInOrder(report)) {
     s += "<div><h3>" + Escape(name) + "</h3><table>\n";
-    for (const auto& [key, value] : report["stages"][name].items()) {
+    for (const auto& [key, value] : At(report, {"stages", name}).items()) {
       if (value.is_object() || value.is_array()) continue;  // lists stay in report.json
       s += "<tr><td>" + Escape(key) + "</td><td class=\"num\">" + Escape(Format(value)) + "</td></tr>\n";
     }
@@ -292,8 +307,8 @@ Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out) {
   std::ostringstream page;
   page << PageStart("pqlayout report") << "<h1>pqlayout: statics-sensitive layout</h1>\n"
        << "<p class=\"sub\">" << Escape(Metric(report, "surface", "source")) << " · "
-       << Escape(Format(report["config"]["guidance"]["source"])) << " guidance · h = "
-       << Escape(Format(report["config"]["layout"]["spacing"])) << " m</p>\n"
+       << Escape(Format(At(report, {"config", "guidance", "source"}))) << " guidance · h = "
+       << Escape(Format(At(report, {"config", "layout", "spacing"}))) << " m</p>\n"
        << "<h2>Summary</h2>\n<div class=\"cols\"><div>" << Summary(report) << "</div><div>"
        << KeyResults(report) << "</div><div>" << Timings(report) << "</div></div>\n<h2>Figures</h2>\n"
        << "<div class=\"figures\">\n";
@@ -312,23 +327,33 @@ Status WriteCompareReportHtml(const nlohmann::json& comparison, const std::strin
   const std::filesystem::path root(dir);
   std::ostringstream page;
   page << PageStart("pqlayout comparison") << "<h1>pqlayout: strain vs curvature guidance</h1>\n"
-       << "<p class=\"sub\">config " << Escape(Format(comparison.value("config_file", nlohmann::json()))) << " · "
+       << "<p class=\"sub\">config " << Escape(Format(At(comparison, {"config_file"}))) << " · "
        << "runs: <a href=\"strain/report.html\">strain</a>, <a href=\"curvature/report.html\">curvature</a></p>\n"
        << "<h2>Comparison</h2>\n<table><tr><th>metric</th><th>strain guidance</th><th>curvature guidance</th>"
        << "<th>strain vs curvature</th></tr>\n";
-  for (const auto& row : comparison.value("rows", nlohmann::json::array())) {
+  for (const auto& row : At(comparison, {"rows"})) {
     std::string difference = "–";
-    if (row["difference_percent"].is_number()) {
+    const nlohmann::json& percent = At(row, {"difference_percent"});
+    if (percent.is_number()) {
       std::ostringstream d;
       d.precision(3);
-      d << std::showpos << row["difference_percent"].get<double>() << " %";
+      d << std::showpos << percent.get<double>() << " %";
       difference = d.str();
     }
-    page << "<tr><td>" << Escape(Format(row["label"])) << "</td><td class=\"num\">" << Escape(Format(row["strain"]))
-         << "</td><td class=\"num\">" << Escape(Format(row["curvature"])) << "</td><td class=\"num\">"
+    page << "<tr><td>" << Escape(Format(At(row, {"label"}))) << "</td><td class=\"num\">" << Escape(Format(At(row, {"strain"})))
+         << "</td><td class=\"num\">" << Escape(Format(At(row, {"curvature"}))) << "</td><td class=\"num\">"
          << Escape(difference) << "</td></tr>\n";
   }
-  page << "</table>\n";
+  page << "</table>\n<h2>Runs</h2>\n<div class=\"pair\">\n";
+  for (const char* source : {"strain", "curvature"}) {
+    bool found = false;
+    const std::string text = ReadFile(root / source / "report.json", &found);
+    const nlohmann::json run = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+    page << "<div><h3>" << source << " guidance</h3>\n"
+         << (found && run.is_object() ? Summary(run) + Timings(run) : std::string("<p>report.json missing</p>\n"))
+         << "</div>\n";
+  }
+  page << "</div>\n";
   struct Pair {
     const char* heading;
     std::filesystem::path strain, curvature;

@@ -3,6 +3,7 @@
 // figure replaced by an empty frame (title, colour bar, scale bar, no data) or with a figure
 // missing fails and names the figure; a page whose figures claim to be fine but renders
 // blank fails on its screenshot. Skipped, with a message, where /usr/bin/chromium is absent.
+// Also (no browser needed) the page `compare` writes: table, both runs, figures in pairs.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -126,6 +127,58 @@ TEST_F(ReportCheck, BlankScreenshotFails) {
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_NE(r.out.find("ok   x.svg"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("FAIL screenshot"), std::string::npos) << r.out;
+}
+
+// DIR/report.html after compare (no browser needed): the comparison table, the two runs'
+// summaries, the figures in strain/curvature pairs with their ids made unique per figure,
+// and a figure absent from one run marked missing.
+TEST(CompareReport, TableRunsAndFiguresSideBySide) {
+  const std::string dir = testing::TempDir();
+  SvgCanvas canvas(Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 10)), 1000, "figure");
+  canvas.ColourBar(Viridis, 0.0, 1.0, "value");  // defines a gradient with id "g0"
+  const std::string svg = canvas.ToSvg();
+  ASSERT_NE(svg.find("id=\"g0\""), std::string::npos);
+  fs::create_directories(dir + "/figures");
+  testing::WriteFile(dir + "/figures", "compliance_strain.svg", svg);
+  testing::WriteFile(dir + "/figures", "compliance_curvature.svg", svg);
+  for (const char* source : {"strain", "curvature"}) {
+    fs::create_directories(dir + "/" + source + "/figures");
+    for (const char* figure : {"levelsets.svg", "planarity.svg", "shell_3d.svg", "guidance.svg"})
+      if (!(std::string(source) == "curvature" && std::string(figure) == "shell_3d.svg"))
+        testing::WriteFile(dir + "/" + source + "/figures", figure, svg);
+    testing::WriteFile(dir + "/" + source, "report.json",
+                       nlohmann::json{{"config", {{"guidance", {{"source", source}}}}},
+                                      {"run", {{"completed_stages", {"surface"}}}},
+                                      {"stages", {{"surface", {{"seconds", 0.5}}}}}}
+                           .dump());
+  }
+  const nlohmann::json comparison = {
+      {"config_file", "dome.yaml"},
+      {"rows",
+       {{{"label", "compliance total [J]"}, {"strain", 422.5}, {"curvature", 365.0}, {"difference_percent", 15.75}},
+        {{"label", "nodes"}, {"strain", 50}, {"curvature", 50}, {"difference_percent", 0.0}}}}};
+  ASSERT_TRUE(WriteCompareReportHtml(comparison, dir).ok());
+  const std::string html = ReadAll(dir + "/report.html");
+  EXPECT_NE(html.find("<td>compliance total [J]</td><td class=\"num\">422.5</td><td class=\"num\">365</td>"
+                      "<td class=\"num\">+15.8 %</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<h3>strain guidance</h3>"), std::string::npos);
+  EXPECT_NE(html.find("<td>guidance</td><td>curvature, threshold –</td>"), std::string::npos);
+  int figures = 0, missing = 0;
+  for (size_t at = html.find("<figure data-figure="); at != std::string::npos; at = html.find("<figure data-figure=", at + 1))
+    ++figures;
+  for (size_t at = html.find("data-missing"); at != std::string::npos; at = html.find("data-missing", at + 1)) ++missing;
+  EXPECT_EQ(figures, 10);
+  EXPECT_EQ(missing, 1);
+  EXPECT_NE(html.find("curvature/shell_3d.svg was not written"), std::string::npos);
+  // Each inlined figure's gradient id is its own, and its fill refers to it (figure 7, the
+  // missing curvature/shell_3d.svg, has none).
+  for (const int k : {0, 1, 2, 3, 4, 5, 6, 8, 9}) {
+    const std::string id = "f" + std::to_string(k) + "-g0";
+    EXPECT_NE(html.find("id=\"" + id + "\""), std::string::npos) << id;
+    EXPECT_NE(html.find("url(#" + id + ")"), std::string::npos) << id;
+  }
+  EXPECT_EQ(html.find("id=\"g0\""), std::string::npos);
 }
 
 }  // namespace
