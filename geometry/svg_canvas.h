@@ -34,11 +34,11 @@ struct SvgStyle {
   static constexpr double kReferenceWidth = 1000.0;     // sizes below are for this width
   static constexpr double kPadding = 16.0;              // outer margin
   static constexpr double kTitleFont = 24.0;            // title font size
-  static constexpr double kLabelFont = 15.0;            // colour-bar label, legend, scale bar
-  static constexpr double kTickFont = 13.0;             // colour-bar tick labels
+  static constexpr double kLabelFont = 17.0;            // colour-bar label, legend, scale bar
+  static constexpr double kTickFont = 16.0;             // colour-bar tick labels
   static constexpr double kCharWidth = 0.56;            // mean glyph width / font size (layout)
   static constexpr double kTopBand = 78.0;              // title row + colour-bar label row
-  static constexpr double kRightBand = 150.0;           // colour bar, tick labels, north arrow
+  static constexpr double kRightBand = 180.0;           // colour bar, tick labels, north arrow
   static constexpr double kBottomBand = 62.0;           // scale bar row
   static constexpr double kLegendRow = 26.0;            // height of one legend row
   static constexpr double kMaxAspect = 1.5;             // plot height at most this × width

@@ -744,12 +744,13 @@ TEST(FigureScaling, LineWidthsFollowTheFaceCountAndGlyphDensityTheDrawing) {
     const std::string opacity = Attribute(svg, members, "stroke-opacity");
     return width.empty() ? std::make_pair(0.0, 0.0) : std::make_pair(std::stod(width), std::stod(opacity));
   };
-  // The reference is the unit square [0, 1]², 834 px wide on the 1000 px drawing (unit 1).
-  EXPECT_EQ(member_stroke(17), std::make_pair(1.2, 0.9));    // 289 faces, edges ~49 px
-  const auto dense = member_stroke(173);                      // 29,929 faces, edges ~4.8 px
+  // The reference is the unit square [0, 1]², `plot` px wide on the 1000 px drawing (unit 1).
+  const double plot = SvgStyle::kReferenceWidth - SvgStyle::kPadding - SvgStyle::kRightBand;
+  EXPECT_EQ(member_stroke(17), std::make_pair(1.2, 0.9));    // 289 faces, edges ~47 px
+  const auto dense = member_stroke(173);                      // 29,929 faces, edges ~4.6 px
   EXPECT_DOUBLE_EQ(dense.first, 0.3);
-  EXPECT_NEAR(dense.second, 0.35 + 0.55 * (834.0 / 173 - 4.0) / 11.0, 0.01);
-  EXPECT_EQ(member_stroke(316), std::make_pair(0.0, 0.0));   // 99,856 faces, edges ~2.6 px
+  EXPECT_NEAR(dense.second, 0.35 + 0.55 * (plot / 173 - 4.0) / 11.0, 0.006);  // printed to 0.01
+  EXPECT_EQ(member_stroke(316), std::make_pair(0.0, 0.0));   // 99,856 faces, edges ~2.5 px
 
   const auto streamline_count = [](int n) {
     const SurfaceModel surface(testing::ToMesh(testing::FlatGridSoup(n)));
@@ -763,7 +764,7 @@ TEST(FigureScaling, LineWidthsFollowTheFaceCountAndGlyphDensityTheDrawing) {
   };
   const int coarse = streamline_count(12);   // 288 triangles
   const int fine = streamline_count(122);    // 29,768 triangles
-  EXPECT_GE(coarse, 30);                     // ~834 px / 16 px
+  EXPECT_GE(coarse, 30);                     // ~800 px / 16 px
   EXPECT_NEAR(fine, coarse, 0.1 * coarse);
 }
 
