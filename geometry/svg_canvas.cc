@@ -205,21 +205,20 @@ void SvgCanvas::AddPx(const Eigen::Vector2d& world) {
 }
 
 void SvgCanvas::CloseFaceGroup() {
-  if (!face_group_open_) return;
+  if (face_group_.empty()) return;
   body_ += "</g>\n";
-  face_group_open_ = false;
+  face_group_.clear();
 }
 
-void SvgCanvas::Polygon(const std::vector<Eigen::Vector2d>& points, Rgb fill) {
-  if (points.size() < 3) return;
-  if (!face_group_open_) {
-    body_ +=
-        "<g fill=\"currentColor\" stroke=\"currentColor\" stroke-linejoin=\"round\" "
-        "stroke-width=\"" +
-        Number(SvgStyle::kFaceSeamWidth * unit(), 2) + "\">\n";
-    face_group_open_ = true;
-  }
-  body_ += "<path color=\"" + fill.Hex() + "\" d=\"M";
+void SvgCanvas::OpenFaceGroup(const std::string& attributes) {
+  if (face_group_ == attributes) return;
+  CloseFaceGroup();
+  body_ += "<g " + attributes + ">\n";
+  face_group_ = attributes;
+}
+
+void SvgCanvas::FacePath(const std::string& attribute, const std::vector<Eigen::Vector2d>& points) {
+  body_ += "<path " + attribute + " d=\"M";
   for (size_t i = 0; i < points.size(); ++i) {
     if (i == 1) body_ += 'L';
     if (i > 1) body_ += ' ';
@@ -228,12 +227,30 @@ void SvgCanvas::Polygon(const std::vector<Eigen::Vector2d>& points, Rgb fill) {
   body_ += "Z\"/>\n";
 }
 
+void SvgCanvas::Polygon(const std::vector<Eigen::Vector2d>& points, Rgb fill) {
+  if (points.size() < 3) return;
+  OpenFaceGroup(
+      "fill=\"currentColor\" stroke=\"currentColor\" stroke-linejoin=\"round\" stroke-width=\"" +
+      Number(SvgStyle::kFaceSeamWidth * unit(), 2) + "\"");
+  FacePath("color=\"" + fill.Hex() + "\"", points);
+}
+
+void SvgCanvas::OutlinedPolygon(const std::vector<Eigen::Vector2d>& points, Rgb fill,
+                                const Stroke& edge) {
+  if (!(edge.width > 0.0)) return Polygon(points, fill);
+  if (points.size() < 3) return;
+  OpenFaceGroup("stroke=\"" + edge.colour.Hex() + "\" stroke-width=\"" +
+                Number(edge.width * unit(), 2) + "\" stroke-opacity=\"" + Number(edge.opacity, 2) +
+                "\" stroke-linejoin=\"round\"");
+  FacePath("fill=\"" + fill.Hex() + "\"", points);
+}
+
 void SvgCanvas::Boxes(const std::vector<Eigen::AlignedBox2d>& boxes, Rgb fill) {
   if (boxes.empty()) return;
   CloseFaceGroup();
   const std::string colour = fill.Hex();
   body_ += "<path fill=\"" + colour + "\" stroke=\"" + colour + "\" stroke-width=\"" +
-           Number(SvgStyle::kFaceSeamWidth * unit(), 2) + "\" d=\"";
+           Number(SvgStyle::kBoxSeamWidth * unit(), 2) + "\" d=\"";
   for (const auto& box : boxes) {
     const Eigen::Vector2d a = ToPx({box.min().x(), box.max().y()});
     const Eigen::Vector2d b = ToPx({box.max().x(), box.min().y()});
@@ -359,24 +376,69 @@ std::string SvgCanvas::HatchFill(Rgb colour) {
   return "url(#" + id + ")";
 }
 
-void SvgCanvas::ColourBar(ColourMap map, double lo, double hi, const std::string& label) {
+Eigen::Vector2d SvgCanvas::ColourBarTopLeft() const {
+  return {plot_origin_.x() + plot_size_.x() + SvgStyle::kColourBarGap * unit(), plot_origin_.y()};
+}
+
+Eigen::Vector2d SvgCanvas::ColourBarSize() const {
+  return {SvgStyle::kColourBarWidth * unit(),
+          std::min(SvgStyle::kColourBarFill * plot_size_.y(),
+                   SvgStyle::kColourBarMaxHeight * unit())};
+}
+
+void SvgCanvas::ColourBarLabel(const Eigen::Vector2d& top_left, const std::string& text) {
   const double u = unit();
-  const Eigen::Vector2d top_left(plot_origin_.x() + plot_size_.x() + SvgStyle::kColourBarGap * u,
-                                 plot_origin_.y());
-  const Eigen::Vector2d size(
-      SvgStyle::kColourBarWidth * u,
-      std::min(SvgStyle::kColourBarFill * plot_size_.y(), SvgStyle::kColourBarMaxHeight * u));
-  const double magnitude = std::max(std::abs(lo), std::abs(hi));
-  const int order = magnitude > 0.0 ? static_cast<int>(std::floor(std::log10(magnitude))) : 0;
-  const int exponent = (order >= 4 || order <= -3) ? order : 0;
-  ColourBarGradient(map, top_left, size);
-  ColourBarTicks(lo, hi, exponent, top_left, size);
-  const std::string text = exponent == 0 ? label : label + " " + PowerOfTen(exponent);
   const double text_width = CodePoints(text) * SvgStyle::kCharWidth * SvgStyle::kLabelFont * u;
   const bool fits = top_left.x() + text_width <= width_ - SvgStyle::kPadding * u;
   TextPx({fits ? top_left.x() : width_ - SvgStyle::kPadding * u,
           top_left.y() - 3.0 * SvgStyle::kTextGap * u},
          text, SvgStyle::kLabelFont, fits ? "start" : "end");
+}
+
+void SvgCanvas::ColourBar(ColourMap map, double lo, double hi, const std::string& label) {
+  const Eigen::Vector2d top_left = ColourBarTopLeft(), size = ColourBarSize();
+  const double magnitude = std::max(std::abs(lo), std::abs(hi));
+  const int order = magnitude > 0.0 ? static_cast<int>(std::floor(std::log10(magnitude))) : 0;
+  const int exponent = (order >= 4 || order <= -3) ? order : 0;
+  ColourBarGradient(map, top_left, size);
+  ColourBarTicks(lo, hi, exponent, top_left, size);
+  ColourBarLabel(top_left, exponent == 0 ? label : label + " " + PowerOfTen(exponent));
+}
+
+void SvgCanvas::LogColourBar(ColourMap map, double lo, double hi, const std::string& label,
+                             const std::vector<Mark>& marks) {
+  const Eigen::Vector2d top_left = ColourBarTopLeft(), size = ColourBarSize();
+  ColourBarGradient(map, top_left, size);
+  const double log_lo = std::log10(lo), log_hi = std::log10(hi);
+  const auto s_of = [&](double v) { return (std::log10(v) - log_lo) / (log_hi - log_lo); };
+  const double min_gap = 1.2 * SvgStyle::kTickFont * unit() / size.y();  // in s
+  std::vector<Tick> ticks;
+  for (int k = static_cast<int>(std::ceil(log_lo - 1e-9)); k <= log_hi + 1e-9; ++k) {
+    Tick tick{s_of(std::pow(10.0, k)), "10" + PowerOfTen(k).substr(std::string("×10").size())};
+    for (const Mark& mark : marks) {
+      const double s = s_of(mark.value);
+      if (std::abs(s - tick.s) < 1e-9) {
+        tick.label += " " + mark.text;
+        tick.bold = true;
+      } else if (std::abs(s - tick.s) < min_gap) {
+        tick.label.clear();  // room for the mark's own label
+      }
+    }
+    ticks.push_back(tick);
+  }
+  for (const Mark& mark : marks) {
+    const double s = s_of(mark.value);
+    const bool on_tick = std::any_of(ticks.begin(), ticks.end(), [&](const Tick& t) {
+      return std::abs(t.s - s) < 1e-9;
+    });
+    if (!on_tick && s >= 0.0 && s <= 1.0) {
+      char value[32];
+      std::snprintf(value, sizeof(value), "%g", mark.value);
+      ticks.push_back({s, mark.text + " " + value, true});
+    }
+  }
+  DrawColourBarTicks(ticks, top_left, size);
+  ColourBarLabel(top_left, label);
 }
 
 void SvgCanvas::ColourBarGradient(ColourMap map, const Eigen::Vector2d& top_left,
@@ -397,22 +459,38 @@ void SvgCanvas::ColourBarGradient(ColourMap map, const Eigen::Vector2d& top_left
 
 void SvgCanvas::ColourBarTicks(double lo, double hi, int exponent, const Eigen::Vector2d& top_left,
                                const Eigen::Vector2d& size) {
-  const double u = unit();
   const double factor = std::pow(10.0, -exponent);
-  const std::vector<double> ticks = NiceTicks(lo * factor, hi * factor);
-  const int decimals = ticks.size() > 1 ? DecimalsFor(ticks[1] - ticks[0]) : 2;
+  const std::vector<double> values = NiceTicks(lo * factor, hi * factor);
+  const int decimals = values.size() > 1 ? DecimalsFor(values[1] - values[0]) : 2;
+  std::vector<Tick> ticks;
+  for (const double value : values)
+    ticks.push_back({hi > lo ? (value / factor - lo) / (hi - lo) : 0.5, Number(value, decimals)});
+  DrawColourBarTicks(ticks, top_left, size);
+}
+
+void SvgCanvas::DrawColourBarTicks(const std::vector<Tick>& ticks, const Eigen::Vector2d& top_left,
+                                   const Eigen::Vector2d& size) {
+  const double u = unit();
   const double x = top_left.x() + size.x();
-  std::string d;
-  for (const double tick : ticks) {
-    const double s = hi > lo ? (tick / factor - lo) / (hi - lo) : 0.5;
-    const double y = top_left.y() + (1.0 - s) * size.y();
-    d += "M" + Number(x) + " " + Number(y) + "h" + Number(SvgStyle::kTickLength * u);
+  std::string d, bold;
+  for (const Tick& tick : ticks) {
+    const double y = top_left.y() + (1.0 - tick.s) * size.y();
+    if (tick.bold)  // a mark: across the bar and out like a tick
+      bold += "M" + Number(top_left.x()) + " " + Number(y) + "H" +
+              Number(x + SvgStyle::kTickLength * u);
+    else
+      d += "M" + Number(x) + " " + Number(y) + "h" + Number(SvgStyle::kTickLength * u);
+    if (tick.label.empty()) continue;
     TextPx(
         {x + (SvgStyle::kTickLength + SvgStyle::kTextGap) * u, y + 0.35 * SvgStyle::kTickFont * u},
-        Number(tick, decimals), SvgStyle::kTickFont, "start");
+        tick.label, SvgStyle::kTickFont, "start");
+    if (tick.bold) body_.insert(body_.rfind("<text ") + 6, "font-weight=\"bold\" ");
   }
   body_ += "<path fill=\"none\" stroke=\"" + std::string(SvgStyle::kInk) + "\" stroke-width=\"" +
            Number(u, 2) + "\" d=\"" + d + "\"/>\n";
+  if (!bold.empty())
+    body_ += "<path fill=\"none\" stroke=\"" + std::string(SvgStyle::kInk) + "\" stroke-width=\"" +
+             Number(2.5 * u, 2) + "\" d=\"" + bold + "\"/>\n";
 }
 
 void SvgCanvas::ScaleBar() {
@@ -452,6 +530,31 @@ void SvgCanvas::NorthArrow() {
   TextPx({cx, tip - SvgStyle::kTextGap * u}, "N", SvgStyle::kLabelFont, "middle");
 }
 
+void SvgCanvas::AxisTriad(const Eigen::Vector2d& east, const Eigen::Vector2d& north,
+                          const Eigen::Vector2d& up) {
+  CloseFaceGroup();
+  const double u = unit();
+  // Centred in the right column (between the colour-bar gap and the padding), at the bottom.
+  const double column = SvgStyle::kRightBand - SvgStyle::kColourBarGap - SvgStyle::kPadding;
+  const double length = 0.3 * column * u;
+  const Eigen::Vector2d origin(
+      plot_origin_.x() + plot_size_.x() + (SvgStyle::kColourBarGap + 0.5 * column) * u,
+      plot_origin_.y() + plot_size_.y() - 0.5 * length);
+  std::string d;
+  const std::pair<const Eigen::Vector2d*, const char*> axes[] = {{&east, "E"}, {&north, "N"}, {&up, "up"}};
+  for (const auto& [dir, label] : axes) {
+    const Eigen::Vector2d tip = origin + length * Eigen::Vector2d(dir->x(), -dir->y());
+    d += "M" + Number(origin.x()) + " " + Number(origin.y()) + "L" + Number(tip.x()) + " " +
+         Number(tip.y());
+    const double n = dir->norm();
+    const Eigen::Vector2d away = n > 1e-9 ? Eigen::Vector2d(dir->x(), -dir->y()) / n : Eigen::Vector2d(0, -1);
+    const Eigen::Vector2d at = tip + away * (SvgStyle::kTextGap + 0.5 * SvgStyle::kLabelFont) * u;
+    TextPx({at.x(), at.y() + 0.35 * SvgStyle::kLabelFont * u}, label, SvgStyle::kLabelFont, "middle");
+  }
+  body_ += "<path fill=\"none\" stroke=\"" + std::string(SvgStyle::kInk) + "\" stroke-width=\"" +
+           Number(1.5 * u, 2) + "\" stroke-linecap=\"round\" d=\"" + d + "\"/>\n";
+}
+
 void SvgCanvas::Legend(const std::vector<LegendEntry>& entries) {
   CloseFaceGroup();
   const double u = unit();
@@ -474,12 +577,14 @@ std::string SvgCanvas::ToSvg() const {
   std::string svg =
       "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
       "width=\"" +
-      w + "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\" font-family=\"" +
+      w + "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\" data-plot=\"" +
+      Number(plot_origin_.x()) + " " + Number(plot_origin_.y()) + " " + Number(plot_size_.x()) +
+      " " + Number(plot_size_.y()) + "\" font-family=\"" +
       SvgStyle::kFont + "\" fill=\"" + SvgStyle::kInk + "\">\n";
   if (!defs_.empty()) svg += "<defs>\n" + defs_ + "</defs>\n";
   svg += "<rect width=\"" + w + "\" height=\"" + h + "\" fill=\"#ffffff\"/>\n";
   svg += body_;
-  if (face_group_open_) svg += "</g>\n";
+  if (!face_group_.empty()) svg += "</g>\n";
   svg += "</svg>\n";
   return svg;
 }

@@ -34,11 +34,11 @@ struct SvgStyle {
   static constexpr double kReferenceWidth = 1000.0;     // sizes below are for this width
   static constexpr double kPadding = 16.0;              // outer margin
   static constexpr double kTitleFont = 24.0;            // title font size
-  static constexpr double kLabelFont = 15.0;            // colour-bar label, legend, scale bar
-  static constexpr double kTickFont = 13.0;             // colour-bar tick labels
+  static constexpr double kLabelFont = 17.0;            // colour-bar label, legend, scale bar
+  static constexpr double kTickFont = 16.0;             // colour-bar tick labels
   static constexpr double kCharWidth = 0.56;            // mean glyph width / font size (layout)
   static constexpr double kTopBand = 78.0;              // title row + colour-bar label row
-  static constexpr double kRightBand = 150.0;           // colour bar, tick labels, north arrow
+  static constexpr double kRightBand = 180.0;           // colour bar, tick labels, north arrow
   static constexpr double kBottomBand = 62.0;           // scale bar row
   static constexpr double kLegendRow = 26.0;            // height of one legend row
   static constexpr double kMaxAspect = 1.5;             // plot height at most this × width
@@ -56,6 +56,7 @@ struct SvgStyle {
   static constexpr double kSwatchHeight = 16.0;         // legend swatch
   static constexpr double kOutlineWidth = 1.6;          // boundary outline stroke
   static constexpr double kFaceSeamWidth = 0.5;         // same-colour stroke hiding AA seams
+  static constexpr double kBoxSeamWidth = 1.0;          // the same for grid boxes (cells ≥ 2 px)
   static constexpr double kHatchSpacing = 8.0;          // hatch pattern period
   static constexpr double kHatchWidth = 1.4;            // hatch line width
   static constexpr double kHatchOpacity = 0.7;          // opacity of the hatch background
@@ -103,6 +104,10 @@ class SvgCanvas {
   // Filled polygon in world coordinates, one <path> element each; consecutive polygons
   // share a group that strokes each with its own colour, hiding anti-aliasing seams.
   void Polygon(const std::vector<Eigen::Vector2d>& points, Rgb fill);
+  // Filled polygon with its edges stroked by `edge` (for painter's-order drawings, where
+  // edges must be hidden by the faces in front); consecutive polygons with the same edge
+  // stroke share a group. edge.width <= 0: same as Polygon.
+  void OutlinedPolygon(const std::vector<Eigen::Vector2d>& points, Rgb fill, const Stroke& edge);
   // Axis-aligned world boxes filled with one colour, as a single <path> element.
   void Boxes(const std::vector<Eigen::AlignedBox2d>& boxes, Rgb fill);
   // Closed rings (outer rings and holes, even-odd rule) filled with `fill` (a colour or a
@@ -127,18 +132,47 @@ class SvgCanvas {
   // Vertical colour bar right of the plot for values lo..hi with ~5 round ticks and the
   // label (with units) above it; very small or large values get a common ×10^k factor.
   void ColourBar(ColourMap map, double lo, double hi, const std::string& label);
+  // Vertical colour bar for values lo..hi (> 0) on a logarithmic scale, ticks at the powers
+  // of ten labelled "10⁻³"; each mark (value, text) is drawn as a bold line across the bar
+  // with its text after the tick label (ticks closer than a line of text to a mark that is
+  // not a power of ten are left out).
+  struct Mark {
+    double value;
+    std::string text;
+  };
+  void LogColourBar(ColourMap map, double lo, double hi, const std::string& label,
+                    const std::vector<Mark>& marks);
   // Scale bar of NiceScaleBarLength metres below the plot, labelled "L m".
   void ScaleBar();
   // North arrow at the bottom of the right column.
   void NorthArrow();
+  // Instead of the north arrow, for oblique views: arrows east, north and up as they appear
+  // in the drawing (each a 2D direction, y up, length ≤ 1 = full arrow), labelled E, N, up.
+  void AxisTriad(const Eigen::Vector2d& east, const Eigen::Vector2d& north,
+                 const Eigen::Vector2d& up);
   // One row per entry below the scale bar: swatch + label.
   void Legend(const std::vector<LegendEntry>& entries);
 
+  // The root element carries data-plot="x y w h": the plot rectangle in px, for checks
+  // that look at the data area only (scripts/check_report.sh).
   std::string ToSvg() const;
   Status Write(const std::string& path) const;  // atomically
 
  private:
   void CloseFaceGroup();
+  void OpenFaceGroup(const std::string& attributes);
+  void FacePath(const std::string& attribute, const std::vector<Eigen::Vector2d>& points);
+  Eigen::Vector2d ColourBarTopLeft() const;
+  Eigen::Vector2d ColourBarSize() const;
+  void ColourBarLabel(const Eigen::Vector2d& top_left, const std::string& text);
+  // Tick marks at relative heights s ∈ [0, 1] (0 bottom) with their labels.
+  struct Tick {
+    double s;
+    std::string label;
+    bool bold = false;
+  };
+  void DrawColourBarTicks(const std::vector<Tick>& ticks, const Eigen::Vector2d& top_left,
+                          const Eigen::Vector2d& size);
   void AddPx(const Eigen::Vector2d& world);  // appends "x y" in px to body_
   void TextPx(const Eigen::Vector2d& px, const std::string& text, double size,
               const std::string& anchor);
@@ -154,7 +188,7 @@ class SvgCanvas {
   Eigen::Vector2d plot_size_;    // px
   int legend_rows_ = 0;
   int next_id_ = 0;  // for pattern/gradient ids
-  bool face_group_open_ = false;
+  std::string face_group_;  // attributes of the open face group, "" if none
   std::string defs_;
   std::string body_;
 };

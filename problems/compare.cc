@@ -12,6 +12,7 @@
 #include "problems/figures.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"
+#include "problems/report_html.h"
 
 namespace pqlayout {
 namespace {
@@ -145,6 +146,7 @@ Status RunCompare(const CompareOptions& options, nlohmann::json* comparison) {
   PQ_RETURN_IF_ERROR(WriteTextFileAtomically((dir / "compare.json").string(), comparison->dump(2) + "\n"));
   PQ_RETURN_IF_ERROR(WriteTextFileAtomically((dir / "compare" / "table.md").string(), ComparisonTable(*comparison)));
   PQ_RETURN_IF_ERROR(WriteCompareFigures(dir));
+  PQ_RETURN_IF_ERROR(WriteCompareReportHtml(*comparison, dir.string()));
   LOG(INFO) << "compare: wrote " << (dir / "compare.json").string() << " and compare/table.md\n" << ComparisonTable(*comparison);
   return Status::Ok();
 }

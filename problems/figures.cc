@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "geometry/level_lines.h"
+#include "geometry/planarity.h"
 #include "geometry/streamlines.h"
 #include "geometry/svg_canvas.h"
 
@@ -74,12 +75,23 @@ std::pair<int, int> CentresWithin(double lo, double hi, int n) {
 
 double Cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+// A field to colour: one value per face, or one per vertex interpolated linearly inside
+// each triangle (vertex_values non-empty).
+struct FieldValues {
+  const std::vector<double>& face_values;
+  const std::vector<double>& vertex_values;
+};
+
 // Colour level (0..kColourLevels-1) of every grid cell whose centre lies in a face, -1
 // elsewhere; cells of size `cell` metres cover `box` row by row from its min corner.
-std::vector<int> RasteriseLevels(const SurfaceModel& surface,
-                                 const std::vector<double>& face_values, const ColourScale& scale,
-                                 const Eigen::AlignedBox2d& box, double cell, int nx, int ny) {
+std::vector<int> RasteriseLevels(const SurfaceModel& surface, const FieldValues& field,
+                                 const ColourScale& scale, const Eigen::AlignedBox2d& box,
+                                 double cell, int nx, int ny) {
   constexpr double kTolerance = 1e-9;  // centres on a shared edge belong to both faces
+  const bool smooth = !field.vertex_values.empty();
+  const auto level_of = [&](double value) {
+    return std::clamp(static_cast<int>(scale.T(value) * kColourLevels), 0, kColourLevels - 1);
+  };
   std::vector<int> level(static_cast<size_t>(nx) * ny, -1);
   for (int f = 0; f < surface.num_faces(); ++f) {
     const auto ids = surface.face_vertices(f);
@@ -90,29 +102,31 @@ std::vector<int> RasteriseLevels(const SurfaceModel& surface,
     const Vector2d hi = (a.cwiseMax(b).cwiseMax(c) - box.min()) / cell;
     const auto [i0, i1] = CentresWithin(lo.x(), hi.x(), nx);
     const auto [j0, j1] = CentresWithin(lo.y(), hi.y(), ny);
-    const int t =
-        std::clamp(static_cast<int>(scale.T(face_values[f]) * kColourLevels), 0, kColourLevels - 1);
+    const int flat = smooth ? 0 : level_of(field.face_values[f]);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         const Vector2d p = box.min() + cell * Vector2d(i + 0.5, j + 0.5);
         const double l0 = Cross(b - p, c - p) / area, l1 = Cross(c - p, a - p) / area;
         if (l0 >= -kTolerance && l1 >= -kTolerance && l0 + l1 <= 1.0 + kTolerance)
-          level[static_cast<size_t>(j) * nx + i] = t;
+          level[static_cast<size_t>(j) * nx + i] =
+              smooth ? level_of(l0 * field.vertex_values[ids[0]] + l1 * field.vertex_values[ids[1]] +
+                                (1.0 - l0 - l1) * field.vertex_values[ids[2]])
+                     : flat;
       }
   }
   return level;
 }
 
-// Resamples the face colours onto a grid of small squares and merges runs of equal colour
-// along each row into one box; one <path> per colour level.
-void DrawResampledColours(const SurfaceModel& surface, const std::vector<double>& face_values,
+// Resamples the field onto a grid of small squares and merges runs of equal colour along
+// each row into one box; one <path> per colour level.
+void DrawResampledColours(const SurfaceModel& surface, const FieldValues& field,
                           const ColourScale& scale, const FigureOptions& options,
                           SvgCanvas* canvas) {
   const Eigen::AlignedBox2d box = TopViewBounds(surface);
   const double cell = options.grid_cell_px * canvas->unit() / canvas->px_per_metre();
   const int nx = std::max(1, static_cast<int>(std::ceil(box.sizes().x() / cell)));
   const int ny = std::max(1, static_cast<int>(std::ceil(box.sizes().y() / cell)));
-  const std::vector<int> level = RasteriseLevels(surface, face_values, scale, box, cell, nx, ny);
+  const std::vector<int> level = RasteriseLevels(surface, field, scale, box, cell, nx, ny);
   std::vector<std::vector<Eigen::AlignedBox2d>> boxes(kColourLevels);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx;) {
@@ -133,7 +147,7 @@ void DrawFaceColours(const SurfaceModel& surface, const std::vector<double>& fac
   if (surface.num_faces() <= options.max_face_polygons)
     DrawFacePolygons(surface, face_values, scale, canvas);
   else
-    DrawResampledColours(surface, face_values, scale, options, canvas);
+    DrawResampledColours(surface, {face_values, {}}, scale, options, canvas);
 }
 
 // The outline of a set of faces as closed rings (outer rings and holes), walking the
@@ -270,15 +284,13 @@ Status WriteDisplacementFigure(const SurfaceModel& surface, const std::vector<do
                                const std::string& title, const std::string& path,
                                const FigureOptions& options) {
   PQ_RETURN_IF_ERROR(CheckFinite(v_z, surface.num_vertices(), "v_z", "vertex").WithContext(path));
-  std::vector<double> vertex_mm(v_z.size()), face_mm(surface.num_faces());
+  std::vector<double> vertex_mm(v_z.size());
   std::transform(v_z.begin(), v_z.end(), vertex_mm.begin(), [](double v) { return 1000.0 * v; });
-  for (int f = 0; f < surface.num_faces(); ++f) {
-    const auto ids = surface.face_vertices(f);
-    face_mm[f] = (vertex_mm[ids[0]] + vertex_mm[ids[1]] + vertex_mm[ids[2]]) / 3.0;
-  }
   const ColourScale scale = ScaleFor(vertex_mm, /*allow_diverging=*/true);
   SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
-  DrawFaceColours(surface, face_mm, scale, options, &canvas);
+  // A vertex field: always resampled with linear interpolation inside each triangle, so the
+  // map is smooth (64 colour bands, like contours) whatever the face count.
+  DrawResampledColours(surface, {{}, vertex_mm}, scale, options, &canvas);
   DrawFrame(surface, scale, "v_z [mm]", &canvas);
   return canvas.Write(path);
 }
@@ -344,9 +356,112 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
   return canvas.Write(path);
 }
 
-}  // namespace pqlayout
+namespace {
+constexpr double kMinEdgePx = 4.0;    // shorter edges on the drawing: no member lines
+constexpr double kOpaqueEdgePx = 15.0;  // from here on, lines at full opacity
+}  // namespace
 
-namespace pqlayout {
+double MeshLineWidth(double mean_edge_px) {
+  constexpr double kRatio = 0.05, kMinWidth = 0.3, kMaxWidth = 1.2;
+  if (!(mean_edge_px >= kMinEdgePx)) return 0.0;
+  return std::clamp(kRatio * mean_edge_px, kMinWidth, kMaxWidth);
+}
+
+double MeshLineOpacity(double mean_edge_px) {
+  constexpr double kMinOpacity = 0.35, kMaxOpacity = 0.9;
+  const double s = std::clamp((mean_edge_px - kMinEdgePx) / (kOpaqueEdgePx - kMinEdgePx), 0.0, 1.0);
+  return kMinOpacity + s * (kMaxOpacity - kMinOpacity);
+}
+
+double PlanarityScale::lo() const { return target * std::pow(10.0, -kDecades); }
+double PlanarityScale::hi() const { return target * std::pow(10.0, kDecades); }
+Rgb PlanarityScale::Colour(double delta) const {
+  if (!(delta > lo())) return BlueWhiteRed(0.0);
+  return BlueWhiteRed((std::log10(delta / target) + kDecades) / (2.0 * kDecades));
+}
+
+namespace {
+
+const Rgb kMemberInk{0x28, 0x28, 0x28};  // grid-shell members
+
+std::vector<Eigen::Vector3d> FacePoints(const PolyMesh& mesh, FaceHandle f) {
+  std::vector<Eigen::Vector3d> points;
+  for (const auto v : mesh.fv_range(f)) points.push_back(ToEigen(mesh.point(v)));
+  return points;
+}
+
+std::vector<Vector2d> TopView(const std::vector<Eigen::Vector3d>& points) {
+  std::vector<Vector2d> xy;
+  for (const auto& p : points) xy.push_back(p.head<2>());
+  return xy;
+}
+
+double MeanEdgeLength(const PolyMesh& mesh) {
+  double sum = 0.0;
+  for (const auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
+  return mesh.n_edges() > 0 ? sum / mesh.n_edges() : 0.0;
+}
+
+// The member stroke for this mesh on this canvas; width 0 if the members would be too dense.
+Stroke MemberStroke(const PolyMesh& mesh, const SvgCanvas& canvas) {
+  const double edge_px = MeanEdgeLength(mesh) * canvas.px_per_metre() / canvas.unit();
+  return Stroke{kMemberInk, MeshLineWidth(edge_px), MeshLineOpacity(edge_px)};
+}
+
+// Every edge of the mesh as a segment in the top view.
+Rings TopViewEdges(const PolyMesh& mesh) {
+  Rings members;
+  for (const auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    members.push_back({ToEigen(mesh.point(mesh.from_vertex_handle(h))).head<2>(),
+                       ToEigen(mesh.point(mesh.to_vertex_handle(h))).head<2>()});
+  }
+  return members;
+}
+
+void DrawMembers(const PolyMesh& mesh, SvgCanvas* canvas) {
+  const Stroke stroke = MemberStroke(mesh, *canvas);
+  if (stroke.width > 0.0) canvas->Polylines(TopViewEdges(mesh), stroke, false);
+}
+
+// Top-view bounds of the reference and the mesh together.
+Eigen::AlignedBox2d TopViewBounds(const SurfaceModel& surface, const PolyMesh& mesh) {
+  Eigen::AlignedBox2d box = TopViewBounds(surface);
+  for (const auto v : mesh.vertices()) box.extend(ToEigen(mesh.point(v)).head<2>());
+  return box;
+}
+
+Status CheckPlanarityInput(const PolyMesh& mesh, double target_delta, const std::string& path) {
+  if (!(target_delta > 0.0) || !std::isfinite(target_delta))
+    return Status::InvalidInput(path + ": target δ must be a positive number, got " +
+                                std::to_string(target_delta));
+  if (mesh.n_faces() == 0) return Status::InvalidInput(path + ": the mesh has no faces");
+  return Status::Ok();
+}
+
+std::vector<double> PlanarityPerFace(const PolyMesh& mesh) {
+  std::vector<double> delta(mesh.n_faces());
+  for (const auto f : mesh.faces()) delta[f.idx()] = PlanarityDelta(FacePoints(mesh, f));
+  return delta;
+}
+
+// Log colour bar with the target marked, and the legend: faces meeting the target, δ max.
+void DrawPlanarityKey(const PlanarityScale& scale, const std::vector<double>& delta,
+                      SvgCanvas* canvas) {
+  canvas->LogColourBar(BlueWhiteRed, scale.lo(), scale.hi(), "planarity δ", {{scale.target, "target"}});
+  const long meeting = std::count_if(delta.begin(), delta.end(),
+                                     [&](double d) { return d <= scale.target; });
+  const double max = *std::max_element(delta.begin(), delta.end());
+  std::ostringstream ok, not_ok;
+  ok.precision(3);
+  not_ok.precision(3);
+  ok << "δ ≤ " << scale.target << " (target): " << meeting << " of " << delta.size() << " faces";
+  not_ok << "δ > " << scale.target << ": " << delta.size() - meeting << " faces, δ max " << max;
+  canvas->Legend({{scale.Colour(scale.lo()).Hex(), ok.str()},
+                  {scale.Colour(scale.hi()).Hex(), not_ok.str()}});
+}
+
+}  // namespace
 
 Status WriteComplianceFigure(const SurfaceModel& surface, const PolyMesh& mesh,
                              const std::vector<double>& nodal_compliance, double scale_max,
@@ -356,25 +471,110 @@ Status WriteComplianceFigure(const SurfaceModel& surface, const PolyMesh& mesh,
   const double hi = scale_max > 0.0 ? scale_max
                                     : *std::max_element(nodal_compliance.begin(), nodal_compliance.end());
   const ColourScale scale{Viridis, 0.0, hi > 0.0 ? hi : 1.0};
-  SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
+  SvgCanvas canvas(TopViewBounds(surface, mesh), options.width_px, title);
   // Each face filled with the mean compliance of its nodes (paper Fig. 9, 14).
   for (const auto f : mesh.faces()) {
-    std::vector<Eigen::Vector2d> polygon;
     double sum = 0.0;
-    for (const auto v : mesh.fv_range(f)) {
-      polygon.push_back(ToEigen(mesh.point(v)).head<2>());
-      sum += nodal_compliance[v.idx()];
-    }
-    canvas.Polygon(polygon, scale.map(std::clamp(scale.T(sum / polygon.size()), 0.0, 1.0)));
+    for (const auto v : mesh.fv_range(f)) sum += nodal_compliance[v.idx()];
+    canvas.Polygon(TopView(FacePoints(mesh, f)),
+                   scale.map(std::clamp(scale.T(sum / mesh.valence(f)), 0.0, 1.0)));
   }
-  std::vector<std::vector<Eigen::Vector2d>> members;
-  for (const auto e : mesh.edges()) {
-    const auto h = mesh.halfedge_handle(e, 0);
-    members.push_back({ToEigen(mesh.point(mesh.from_vertex_handle(h))).head<2>(),
-                       ToEigen(mesh.point(mesh.to_vertex_handle(h))).head<2>()});
-  }
-  canvas.Polylines(members, Stroke{Rgb{40, 40, 40}, 0.6, 0.9}, false);
+  DrawMembers(mesh, &canvas);
   DrawFrame(surface, scale, "nodal compliance [J]", &canvas);
+  return canvas.Write(path);
+}
+
+Status WritePlanarityFigure(const SurfaceModel& surface, const PolyMesh& mesh, double target_delta,
+                            const std::string& title, const std::string& path,
+                            const FigureOptions& options) {
+  PQ_RETURN_IF_ERROR(CheckPlanarityInput(mesh, target_delta, path));
+  const PlanarityScale scale{target_delta};
+  const std::vector<double> delta = PlanarityPerFace(mesh);
+  SvgCanvas canvas(TopViewBounds(surface, mesh), options.width_px, title);
+  for (const auto f : mesh.faces())
+    canvas.Polygon(TopView(FacePoints(mesh, f)), scale.Colour(delta[f.idx()]));
+  DrawMembers(mesh, &canvas);
+  DrawOutlineScaleAndNorth(surface, &canvas);
+  DrawPlanarityKey(scale, delta, &canvas);
+  return canvas.Write(path);
+}
+
+namespace {
+
+// Orthographic view from azimuth kAzimuth (direction towards the viewer, from east,
+// counter-clockwise) and elevation kElevation: screen right, screen up, towards the viewer.
+struct ObliqueView {
+  static constexpr double kAzimuth = 240.0 * M_PI / 180.0;
+  static constexpr double kElevation = 35.0 * M_PI / 180.0;
+  Eigen::Vector3d eye{std::cos(kElevation) * std::cos(kAzimuth),
+                      std::cos(kElevation) * std::sin(kAzimuth), std::sin(kElevation)};
+  Eigen::Vector3d right{-std::sin(kAzimuth), std::cos(kAzimuth), 0.0};
+  Eigen::Vector3d up = eye.cross(right);
+  Vector2d Project(const Eigen::Vector3d& p) const { return {p.dot(right), p.dot(up)}; }
+  std::vector<Vector2d> Project(const std::vector<Eigen::Vector3d>& points) const {
+    std::vector<Vector2d> out;
+    for (const auto& p : points) out.push_back(Project(p));
+    return out;
+  }
+};
+
+// Face colour darkened by up to 20 % as the face turns away from a light above the viewer.
+Rgb Shaded(Rgb colour, const std::vector<Eigen::Vector3d>& polygon, const ObliqueView& view) {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // Newell
+  for (size_t i = 0; i < polygon.size(); ++i)
+    normal += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+  const Eigen::Vector3d light = (view.eye + Eigen::Vector3d::UnitZ()).normalized();
+  const double lambert = normal.norm() > 0.0 ? std::abs(normal.normalized().dot(light)) : 1.0;
+  const double factor = 0.8 + 0.2 * lambert;
+  const auto scale = [factor](std::uint8_t c) {
+    return static_cast<std::uint8_t>(std::lround(c * factor));
+  };
+  return {scale(colour.r), scale(colour.g), scale(colour.b)};
+}
+
+}  // namespace
+
+Status WriteShell3dFigure(const SurfaceModel& surface, const PolyMesh& mesh, double target_delta,
+                          const std::string& title, const std::string& path,
+                          const FigureOptions& options) {
+  PQ_RETURN_IF_ERROR(CheckPlanarityInput(mesh, target_delta, path));
+  const PlanarityScale scale{target_delta};
+  const std::vector<double> delta = PlanarityPerFace(mesh);
+  const ObliqueView view;
+  // The reference footprint on the ground, and the bounds of everything drawn.
+  Rings footprint;
+  Eigen::AlignedBox2d box;
+  for (const auto& loop : surface.boundary_loops()) {
+    std::vector<Vector2d> ring;
+    for (const auto v : loop.vertices) {
+      Eigen::Vector3d p = surface.position(v.idx());
+      p.z() = surface.bbox_min().z();
+      ring.push_back(view.Project(p));
+      box.extend(ring.back());
+    }
+    footprint.push_back(std::move(ring));
+  }
+  for (const auto v : mesh.vertices()) box.extend(view.Project(ToEigen(mesh.point(v))));
+  SvgCanvas canvas(box, options.width_px, title);
+  canvas.Region(footprint, "#e4e4e4");
+  canvas.Polylines(footprint, Stroke{Rgb{0xa0, 0xa0, 0xa0}, 1.0, 1.0}, true);
+  // Painter's order: farthest face (smallest depth along the eye direction) first.
+  std::vector<std::pair<double, FaceHandle>> order;
+  for (const auto f : mesh.faces())
+    order.emplace_back(ToEigen(mesh.calc_face_centroid(f)).dot(view.eye), f);
+  std::sort(order.begin(), order.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  const Stroke edges = MemberStroke(mesh, canvas);
+  for (const auto& [depth, f] : order) {
+    const std::vector<Eigen::Vector3d> polygon = FacePoints(mesh, f);
+    canvas.OutlinedPolygon(view.Project(polygon), Shaded(scale.Colour(delta[f.idx()]), polygon, view),
+                           edges);
+  }
+  canvas.ScaleBar();
+  const auto axis = [&](const Eigen::Vector3d& d) { return view.Project(d); };
+  canvas.AxisTriad(axis(Eigen::Vector3d::UnitX()), axis(Eigen::Vector3d::UnitY()),
+                   axis(Eigen::Vector3d::UnitZ()));
+  DrawPlanarityKey(scale, delta, &canvas);
   return canvas.Write(path);
 }
 

@@ -11,6 +11,7 @@
 #include "geometry/planarity.h"
 #include "geometry/quad_extraction.h"
 #include "geometry/svg_canvas.h"
+#include "problems/figures.h"
 #include "problems/stages.h"
 
 namespace pqlayout {
@@ -93,7 +94,9 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   if (quads.stats.rejected_faces > 0 || quads.stats.regions_with_holes > 0)
     LOG(WARNING) << "extract: " << quads.stats.rejected_faces << " faces refused as non-manifold, "
                  << quads.stats.regions_with_holes << " cells left out because they are not discs";
-  return Status::Ok();
+  return WritePlanarityFigure(surface, quads.mesh, state->config.planarize.target_delta,
+                              "Planarity δ of the extracted mesh (before planarisation)",
+                              out->Path("figures/planarity_initial.svg"));
 }
 
 }  // namespace pqlayout

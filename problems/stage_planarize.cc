@@ -15,6 +15,7 @@
 #include "problems/residuals/fairness_residual.h"
 #include "problems/residuals/planarity_residual.h"
 #include "problems/residuals/surface_chart_manifold.h"
+#include "problems/figures.h"
 #include "problems/stages.h"
 
 namespace pqlayout {
@@ -245,7 +246,12 @@ Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json*
     const double t = std::clamp(delta[f.idx()] / (10.0 * state->config.planarize.target_delta), 0.0, 1.0);
     mesh.set_color(f, OpenMesh::Vec3uc(static_cast<unsigned char>(255 * t), 64, static_cast<unsigned char>(255 * (1 - t))));
   }
-  return WriteMesh(mesh, out->Path("quads.ply"));
+  PQ_RETURN_IF_ERROR(WriteMesh(mesh, out->Path("quads.ply")));
+  const double target = state->config.planarize.target_delta;
+  PQ_RETURN_IF_ERROR(WritePlanarityFigure(*state->surface, mesh, target, "Planarity δ after planarisation",
+                                          out->Path("figures/planarity.svg")));
+  return WriteShell3dFigure(*state->surface, mesh, target, "The grid shell, seen from the south-west",
+                            out->Path("figures/shell_3d.svg"));
 }
 
 }  // namespace pqlayout

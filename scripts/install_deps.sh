@@ -7,6 +7,7 @@ packages=(
   libyaml-cpp-dev libcgal-dev libgmp-dev libmpfr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   calculix-ccx           # ccx: the CalculiX cross-check in tests/calculix_test.cc (skipped without it)
+  chromium               # headless browser for the report check (tests/report_check_test, scripts/check_report.sh)
   libopenblas0-pthread   # optimised BLAS for CHOLMOD's supernodal factorisation (replaces ATLAS via alternatives)
 )
 missing=()

@@ -1,16 +1,30 @@
 #!/usr/bin/env bash
-# Regenerates the PNG figures the README shows, from runs of examples/great_court.yaml.
-# Needs rsvg-convert (Debian package librsvg2-bin; installed here if missing).
+# Regenerates the PNG figures the README shows, from runs of examples/great_court.yaml, and
+# the screenshot of report.html (checked by scripts/check_report.sh on the way).
+# Needs rsvg-convert (librsvg2-bin) and pngquant (installed here if missing) and chromium
+# (scripts/install_deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh pqlayout
-command -v rsvg-convert >/dev/null || { sudo=""; [ "$(id -u)" -ne 0 ] && sudo=sudo; $sudo apt-get install -y -qq librsvg2-bin; }
-build/cli/pqlayout run examples/great_court.yaml --out out/readme --until levelset -q
+need=()
+command -v rsvg-convert >/dev/null || need+=(librsvg2-bin)
+command -v pngquant >/dev/null || need+=(pngquant)
+if [ ${#need[@]} -gt 0 ]; then
+  sudo=""; [ "$(id -u)" -ne 0 ] && sudo=sudo
+  $sudo apt-get install -y -qq "${need[@]}"
+fi
+png() {  # SVG → PNG of the given width, colours quantised to keep the file small
+  rsvg-convert -w "$2" "$1" -o "$3"
+  pngquant --quality=70-90 --speed 1 -f -o "$3" "$3"
+}
+build/cli/pqlayout run examples/great_court.yaml --out out/readme -q
 build/cli/pqlayout run examples/great_court.yaml --out out/readme_curvature --until guidance -q --set guidance.source=curvature
-rsvg-convert -w 700 out/readme/figures/displacement.svg -o docs/figures/displacement.png
-rsvg-convert -w 700 out/readme/figures/guidance.svg -o docs/figures/guidance.png
-rsvg-convert -w 700 out/readme_curvature/figures/guidance.svg -o docs/figures/guidance_curvature.png
-rsvg-convert -w 700 out/readme/figures/levelsets.svg -o docs/figures/levelsets.png
+for f in displacement guidance levelsets; do png out/readme/figures/$f.svg 700 docs/figures/$f.png; done
+png out/readme_curvature/figures/guidance.svg 700 docs/figures/guidance_curvature.png
+for f in planarity_initial planarity shell_3d; do png out/readme/figures/$f.svg 600 docs/figures/$f.png; done
+SCREENSHOT_SCALE=0.5 bash scripts/check_report.sh out/readme/report.html docs/figures/report_screenshot.png
+pngquant --quality=60-85 --speed 1 -f -o docs/figures/report_screenshot.png docs/figures/report_screenshot.png
 build/cli/pqlayout compare examples/great_court.yaml --out out/readme_compare -q
-rsvg-convert -w 600 out/readme_compare/figures/compliance_strain.svg -o docs/figures/compliance_strain.png
-rsvg-convert -w 600 out/readme_compare/figures/compliance_curvature.svg -o docs/figures/compliance_curvature.png
+bash scripts/check_report.sh out/readme_compare/report.html
+png out/readme_compare/figures/compliance_strain.svg 600 docs/figures/compliance_strain.png
+png out/readme_compare/figures/compliance_curvature.svg 600 docs/figures/compliance_curvature.png
