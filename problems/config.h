@@ -76,7 +76,7 @@ struct LevelsetWeights {
   double alignment = 10.0;        // φ's level lines follow the guidance
   double spacing = 5.0;           // h|∇φ| = 1 and h|∇ψ| = 1
   double smoothness = 0.01;       // h² × gradient jump per unit length across interior edges
-  double conjugacy = 0.1;         // II(n×∇φ, n×∇ψ) = 0
+  double conjugacy = 1.0;         // II(n×∇φ, n×∇ψ) = 0
   double transversality = 100.0;  // crossing angle ≥ levelset.min_angle, no fold-overs
 };
 
