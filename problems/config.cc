@@ -345,6 +345,8 @@ KeyTable::KeyTable(Config* c) {
   Number("planarize.weights.boundary", &pw.boundary, kNonNegative, "boundary vertices stay on the reference boundary");
   Number("planarize.weights.fairness", &pw.fairness, kNonNegative, "second differences along the mesh polylines");
   Number("planarize.weights.anchor", &pw.anchor, kNonNegative, "vertices stay near where the layout put them");
+  Number("planarize.weights.edge_length", &pw.edge_length, kNonNegative,
+         "× the planarity weight: no edge shrinks below a quarter of its extracted length (or of h); 0: off");
   Number("planarize.target_delta", &c->planarize.target_delta, kPositive, "stop when max planarity δ ≤ target_delta");
   Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (planarity weight raised after each)");
 

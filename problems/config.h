@@ -99,6 +99,7 @@ struct PlanarizeWeights {
   double boundary = 1.0;    // boundary vertices on the reference boundary
   double fairness = 0.01;   // second differences along the mesh polylines
   double anchor = 1.0;      // vertices stay near where the layout put them
+  double edge_length = 0.0; // × planarity weight: no edge below ¼ of its extracted length (of h); 0: off
 };
 
 struct PlanarizeOptions {

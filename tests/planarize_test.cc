@@ -4,12 +4,15 @@
 // staying on the cylinder.
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include <cmath>
 #include <random>
 
 #include "geometry/planarity.h"
 #include "problems/planarize.h"
 #include "problems/residuals/anchor_residual.h"
+#include "problems/residuals/edge_length_residual.h"
 #include "problems/residuals/boundary_residual.h"
 #include "problems/residuals/closeness_residual.h"
 #include "problems/residuals/fairness_residual.h"
@@ -80,7 +83,29 @@ TEST(PlanarizeResiduals, GradientCheckAtRandomPoints) {
           {{middle + Uniform(-0.05, 0.05), Uniform(-0.05, 0.05), 0.3 * std::sin(middle) + Uniform(-0.05, 0.05)}});
     Check("anchor", AnchorResidual::Create(Eigen::Vector3d::Random(), 2.0, 3.0), {RandomBlock(3)});
     Check("fairness", FairnessResidual::Create(0.3, 3.0), {RandomBlock(3), RandomBlock(3), RandomBlock(3)});
+    // The edge-length hinge where it is active (the points closer than ℓ_min = 2).
+    const std::vector<double> a = RandomBlock(3);
+    std::vector<double> b = a;
+    for (int k = 0; k < 3; ++k) b[k] += Uniform(-0.5, 0.5);
+    Check("edge_length", EdgeLengthResidual::Create(2.0, 2.0, 3.0), {a, b});
   }
+}
+
+// The hinge is zero while the edge is at least ℓ_min long and grows linearly below it:
+// r = √w (ℓ_min − ℓ) / h.
+TEST(PlanarizeResiduals, EdgeLengthHingeValues) {
+  std::unique_ptr<ceres::CostFunction> cost(EdgeLengthResidual::Create(0.5, 4.0, 2.0));
+  const auto residual = [&](double length) {
+    const double p[3] = {1.0, 2.0, 3.0}, q[3] = {1.0 + length * 0.6, 2.0 + length * 0.8, 3.0};
+    const double* blocks[2] = {p, q};
+    double r = -1.0;
+    EXPECT_TRUE(cost->Evaluate(blocks, &r, nullptr));
+    return r;
+  };
+  EXPECT_NEAR(residual(0.5), 0.0, 1e-15);  // at ℓ_min (up to rounding of the offset)
+  EXPECT_EQ(residual(3.0), 0.0);
+  EXPECT_NEAR(residual(0.3), 2.0 * 0.2 / 2.0, 1e-15);
+  EXPECT_NEAR(residual(0.0), 2.0 * 0.5 / 2.0, 1e-15);
 }
 
 TEST(SurfaceManifold, StepsStayOnTheReferenceAndPlusJacobianIsTheTangentBasis) {
