@@ -202,6 +202,7 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
     solver.function_tolerance = 1e-6;
     solver.logging_type = ceres::SILENT;
     ceres::Solve(solver, &problem, summary);
+    VLOG(1) << "planarize: Ceres:\n" << summary->FullReport();
   };
 
   for (int v = 0; v < nv; ++v) mesh.set_point(VertexHandle(v), {position[3 * v], position[3 * v + 1], position[3 * v + 2]});
