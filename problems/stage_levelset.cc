@@ -20,6 +20,7 @@
 #include "problems/residuals/transversality_residual.h"
 #include "problems/stages.h"
 #include "problems/surface_fields.h"
+#include "solver/ceres_options.h"
 #include "solver/cholmod_solver.h"
 
 namespace pqlayout {
@@ -276,13 +277,7 @@ nlohmann::json SummaryJson(const ceres::Solver::Summary& s) {
 }
 
 Status Solve(const std::string& name, int max_iterations, ceres::Problem* problem, nlohmann::json* summary) {
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
-  options.num_threads = 2;
-  options.max_num_iterations = max_iterations;
-  options.function_tolerance = 1e-6;
-  options.logging_type = ceres::SILENT;
+  ceres::Solver::Options options = SparseCholeskyOptions(max_iterations);
   ProgressLog progress(name);
   options.callbacks.push_back(&progress);
   ceres::Solver::Summary result;

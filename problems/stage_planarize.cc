@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "geometry/closest_point.h"
+#include "solver/ceres_options.h"
 #include "geometry/mesh_io.h"
 #include "geometry/planarity.h"
 #include "problems/planarize.h"
@@ -194,14 +195,7 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
       for (const auto& t : triples)
         problem.AddResidualBlock(FairnessResidual::Create(fairness_weight, h), nullptr, &position[3 * t[0]],
                                  &position[3 * t[1]], &position[3 * t[2]]);
-    ceres::Solver::Options solver;
-    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-    solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
-    solver.num_threads = 2;
-    solver.max_num_iterations = kIterationsPerRound;
-    solver.function_tolerance = 1e-6;
-    solver.logging_type = ceres::SILENT;
-    ceres::Solve(solver, &problem, summary);
+    ceres::Solve(SparseCholeskyOptions(kIterationsPerRound), &problem, summary);
     VLOG(1) << "planarize: Ceres:\n" << summary->FullReport();
   };
 

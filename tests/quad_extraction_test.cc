@@ -126,18 +126,31 @@ TEST(QuadExtraction, FlatSquareLevelLinesBetweenVertices) {
   ExpectExactGrid(5, 0.9, 1.5);         // lines at 1.5, 3.0: between vertices, crossings inside triangles
 }
 
+struct ExtractionMetricsAndMesh {
+  ExtractedMesh out;
+  ExtractedMeshMetrics m;
+};
+
+// Extracts and checks what every extraction must give: no refused faces, no cells with holes,
+// simple counter-clockwise faces on a manifold, origins that reproduce the positions.
+ExtractionMetricsAndMesh ExtractValid(const SurfaceModel& s, const std::vector<double>& phi,
+                                      const std::vector<double>& psi, double min_edge) {
+  ExtractionMetricsAndMesh r;
+  EXPECT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, min_edge, &r.out).ok());
+  EXPECT_EQ(r.out.stats.rejected_faces, 0);
+  EXPECT_EQ(r.out.stats.regions_with_holes, 0);
+  ExpectSimpleCounterClockwiseManifold(r.out.mesh);
+  ExpectOriginsReproducePositions(s, r.out);
+  r.m = MeasureExtractedMesh(s, r.out, 30.0);
+  return r;
+}
+
 TEST(QuadExtraction, RotatedGridOnDiskIsAManifoldDisk) {
   const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
   for (const double angle : {0.3, 1.0}) {
     std::vector<double> phi, psi;
     RotatedCoordinates(s, angle, 2.0, 0.37, &phi, &psi);
-    ExtractedMesh out;
-    ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.4, &out).ok());
-    EXPECT_EQ(out.stats.rejected_faces, 0);
-    EXPECT_EQ(out.stats.regions_with_holes, 0);
-    ExpectSimpleCounterClockwiseManifold(out.mesh);
-    ExpectOriginsReproducePositions(s, out);
-    const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
+    const auto [out, m] = ExtractValid(s, phi, psi, 0.4);
     std::cout << "disk, angle " << angle << ": " << m.n_vertices << " vertices, " << m.n_faces << " faces, quad fraction "
               << m.quad_fraction << ", min edge " << m.edge_min << ", boundary deviation (vertices) "
               << m.boundary_deviation_vertices << "\n";
@@ -185,13 +198,7 @@ TEST(QuadExtraction, AnnulusHasTwoBoundaryLoops) {
   const SurfaceModel s(GeneratedMesh("annulus", 20.0, 8.0, 0.0, 0.7));
   std::vector<double> phi, psi;
   RotatedCoordinates(s, 0.5, 1.5, 0.21, &phi, &psi);
-  ExtractedMesh out;
-  ASSERT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, 0.3, &out).ok());
-  EXPECT_EQ(out.stats.rejected_faces, 0);
-  EXPECT_EQ(out.stats.regions_with_holes, 0);
-  ExpectSimpleCounterClockwiseManifold(out.mesh);
-  ExpectOriginsReproducePositions(s, out);
-  const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
+  const auto [out, m] = ExtractValid(s, phi, psi, 0.3);
   EXPECT_EQ(m.euler_characteristic, 0);
   EXPECT_EQ(m.boundary_loops, 2);
   EXPECT_TRUE(m.interior_non_quads.empty());
