@@ -1,6 +1,8 @@
 #include "geometry/quad_extraction.h"
 
+#include "geometry/boundary_refinement.h"
 #include "geometry/planarity.h"
+#include "geometry/polygon_shape.h"
 
 #include <algorithm>
 #include <array>
@@ -517,34 +519,6 @@ int DropIdleBoundaryVertices(Polygons* m) {
   return dropped;
 }
 
-// How far a polygon is from degenerate: the smallest of its interior angles and of their
-// supplements (a corner of nearly 180° makes a quad a triangle with an extra point), in the
-// plane with the given normal; negative where a corner is reflex.
-double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon,
-                  const Eigen::Vector3d& normal) {
-  double smallest = M_PI;
-  const size_t n = polygon.size();
-  for (size_t k = 0; k < n; ++k) {
-    const Eigen::Vector3d p = position[polygon[k]];
-    const Eigen::Vector3d in = p - position[polygon[(k + n - 1) % n]], out = position[polygon[(k + 1) % n]] - p;
-    const double turn = std::atan2(in.cross(out).dot(normal), in.dot(out));
-    smallest = std::min({smallest, M_PI - turn, turn});
-  }
-  return smallest;
-}
-
-Eigen::Vector3d NewellNormal(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon) {
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  for (size_t k = 0; k < polygon.size(); ++k)
-    normal += position[polygon[k]].cross(position[polygon[(k + 1) % polygon.size()]]);
-  return normal.norm() > 0.0 ? Eigen::Vector3d(normal.normalized()) : normal;
-}
-
-double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon) {
-  const Eigen::Vector3d normal = NewellNormal(position, polygon);
-  return normal.norm() > 0.0 ? ShapeAngle(position, polygon, normal) : -1.0;
-}
-
 // Along a boundary crossed obliquely by both families the boundary cells alternate between
 // triangles and pentagons. A triangle and a pentagon sharing a curve segment that ends on the
 // boundary form a hexagon, which is re-split into two quads by the diagonal that gives the
@@ -929,16 +903,6 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
 }  // namespace pqlayout
 
 namespace pqlayout {
-namespace {
-
-double PointSegmentDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d d = b - a;
-  const double length_sq = d.squaredNorm();
-  const double t = length_sq > 0.0 ? std::clamp((p - a).dot(d) / length_sq, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
-
-}  // namespace
 
 ExtractedMeshMetrics MeasureExtractedMesh(const SurfaceModel& surface, const ExtractedMesh& extracted,
                                           double corner_angle_deg) {
@@ -982,16 +946,8 @@ ExtractedMeshMetrics MeasureExtractedMesh(const SurfaceModel& surface, const Ext
     m.edge_mean += length / m.n_edges;
   }
   // Boundary loops of the mesh and their distance to the reference boundary.
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> reference;
-  for (const auto& loop : surface.boundary_loops())
-    for (size_t k = 0; k < loop.vertices.size(); ++k)
-      reference.push_back({surface.position(loop.vertices[k]),
-                           surface.position(loop.vertices[(k + 1) % loop.vertices.size()])});
-  const auto distance_to_reference = [&](const Eigen::Vector3d& p) {
-    double d = INFINITY;
-    for (const auto& [a, b] : reference) d = std::min(d, PointSegmentDistance(p, a, b));
-    return d;
-  };
+  const ReferenceBoundary reference(surface);
+  const auto distance_to_reference = [&](const Eigen::Vector3d& p) { return reference.Distance(p); };
   std::set<int> seen;
   for (const auto h : mesh.halfedges()) {
     if (!mesh.is_boundary(h) || seen.count(h.idx())) continue;

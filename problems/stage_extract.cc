@@ -7,6 +7,7 @@
 
 #include <algorithm>
 
+#include "geometry/boundary_refinement.h"
 #include "geometry/mesh_io.h"
 #include "geometry/planarity.h"
 #include "geometry/quad_extraction.h"
@@ -18,6 +19,9 @@ namespace pqlayout {
 namespace {
 
 constexpr double kDeltaColourScale = 0.025;  // δ at the top of the colour map
+// How far (× h, along the boundary) a level line's end may slide to even out boundary chords:
+// the last segment of the line then turns by at most ~15°.
+constexpr double kBoundarySlide = 0.25;
 
 void ColourByPlanarity(PolyMesh* mesh) {
   mesh->request_face_colors();
@@ -51,8 +55,8 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"edge_lengths_relative_to", "layout.spacing"},
           {"planarity_max", m.planarity_max},
           {"planarity_mean", m.planarity_mean},
-          {"boundary_deviation", m.boundary_deviation_vertices},
-          {"boundary_deviation_edges", m.boundary_deviation_edges},
+          {"boundary_deviation", m.boundary_deviation_edges},
+          {"boundary_deviation_vertices", m.boundary_deviation_vertices},
           {"n_corner_vertices", m.n_corner_vertices},
           {"n_reference_corners", m.n_reference_corners},
           {"euler_characteristic", m.euler_characteristic},
@@ -62,6 +66,8 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"resplit_boundary_pairs", stats.resplit_boundary_pairs},
           {"collapsed_boundary_triangles", stats.collapsed_boundary_triangles},
           {"split_interior_polygons", stats.split_interior_polygons},
+          {"refined_boundary_edges", stats.refined_boundary_edges},
+          {"slid_boundary_vertices", stats.slid_boundary_vertices},
           {"dropped_boundary_vertices", stats.dropped_boundary_vertices},
           {"regions_with_holes", stats.regions_with_holes},
           {"rejected_faces", stats.rejected_faces}};
@@ -76,6 +82,8 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   ExtractedMesh& quads = state->quads;
   PQ_RETURN_IF_ERROR(ExtractQuadMesh(surface, state->levelsets.phi, state->levelsets.psi, options.corner_angle,
                                      options.min_edge * h, &quads));
+  RefineBoundaryChords(surface, options.boundary_tolerance * h, kBoundarySlide * h,
+                       options.min_edge * h, &quads);
   if (quads.mesh.n_faces() == 0)
     return Status::Internal("extract: no faces (do the level sets φ, ψ cross any integer level?)");
   const ExtractedMeshMetrics m = MeasureExtractedMesh(surface, quads, options.corner_angle);
@@ -90,7 +98,8 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
             << " % quads (" << m.interior_non_quads.size() << " non-quads off the boundary), edges "
             << m.edge_min / h << "–" << m.edge_max / h << " h (mean " << m.edge_mean / h << "), δ max "
             << m.planarity_max << " mean " << m.planarity_mean << ", corners " << m.n_corner_vertices << "/"
-            << m.n_reference_corners << ", " << quads.stats.collapsed_edges << " short edges merged";
+            << m.n_reference_corners << ", " << quads.stats.collapsed_edges << " short edges merged, boundary within "
+            << m.boundary_deviation_edges / h << " h (" << quads.stats.refined_boundary_edges << " boundary vertices added)";
   if (quads.stats.rejected_faces > 0 || quads.stats.regions_with_holes > 0)
     LOG(WARNING) << "extract: " << quads.stats.rejected_faces << " faces refused as non-manifold, "
                  << quads.stats.regions_with_holes << " cells left out because they are not discs";

@@ -1,0 +1,368 @@
+#include "geometry/boundary_refinement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <set>
+#include <map>
+#include <tuple>
+
+#include "geometry/polygon_shape.h"
+
+namespace pqlayout {
+namespace {
+
+double PointSegmentDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                            double* t_out = nullptr) {
+  const Eigen::Vector3d d = b - a;
+  const double length_sq = d.squaredNorm();
+  const double t = length_sq > 0.0 ? std::clamp((p - a).dot(d) / length_sq, 0.0, 1.0) : 0.0;
+  if (t_out) *t_out = t;
+  return (a + t * d - p).norm();
+}
+
+constexpr double kGoodAngle = 20.0 * M_PI / 180.0;  // pieces with every angle in [20°, 160°] first
+constexpr int kChordSamples = 8;                    // segments a chord is sampled in
+constexpr int kMaxPieces = 8;  // a chord is never cut into more pieces than this while sliding
+constexpr double kSlideMargin = 0.1;  // a slid vertex keeps this fraction of the span from either neighbour
+
+}  // namespace
+
+ReferenceBoundary::ReferenceBoundary(const SurfaceModel& surface) : surface_(surface) {
+  for (const auto& loop : surface.boundary_loops()) {
+    Loop l;
+    l.arc.push_back(0.0);
+    const size_t n = loop.vertices.size();
+    for (size_t k = 0; k < n; ++k) {
+      l.vertices.push_back(loop.vertices[k].idx());
+      l.arc.push_back(l.arc.back() +
+                      (surface.position(loop.vertices[(k + 1) % n]) - surface.position(loop.vertices[k])).norm());
+    }
+    loops_.push_back(std::move(l));
+  }
+}
+
+ReferenceBoundary::Location ReferenceBoundary::Locate(const Eigen::Vector3d& p) const {
+  Location best;
+  best.distance = INFINITY;
+  for (size_t l = 0; l < loops_.size(); ++l) {
+    const Loop& loop = loops_[l];
+    const size_t n = loop.vertices.size();
+    for (size_t k = 0; k < n; ++k) {
+      double t = 0.0;
+      const double d = PointSegmentDistance(p, surface_.position(loop.vertices[k]),
+                                            surface_.position(loop.vertices[(k + 1) % n]), &t);
+      if (d < best.distance) best = {int(l), loop.arc[k] + t * (loop.arc[k + 1] - loop.arc[k]), d};
+    }
+  }
+  return best;
+}
+
+Eigen::Vector3d ReferenceBoundary::Position(int loop, double arc, int* segment, double* t) const {
+  const Loop& l = loops_[loop];
+  const double length = l.arc.back();
+  arc = std::fmod(arc, length);
+  if (arc < 0.0) arc += length;
+  const size_t n = l.vertices.size();
+  size_t k = std::upper_bound(l.arc.begin(), l.arc.end(), arc) - l.arc.begin();
+  k = std::min(std::max<size_t>(k, 1), n) - 1;
+  const double piece = l.arc[k + 1] - l.arc[k];
+  *segment = int(k);
+  *t = piece > 0.0 ? std::clamp((arc - l.arc[k]) / piece, 0.0, 1.0) : 0.0;
+  return (1.0 - *t) * surface_.position(l.vertices[k]) + *t * surface_.position(l.vertices[(k + 1) % n]);
+}
+
+QuadMeshVertex ReferenceBoundary::PointAt(int loop, double arc, Eigen::Vector3d* position) const {
+  int k = 0;
+  double t = 0.0;
+  *position = Position(loop, arc, &k, &t);
+  const Loop& l = loops_[loop];
+  const int u = l.vertices[k], w = l.vertices[(k + 1) % l.vertices.size()];
+  const TriMesh& mesh = surface_.mesh();
+  auto halfedge = mesh.find_halfedge(VertexHandle(u), VertexHandle(w));
+  if (!halfedge.is_valid() || mesh.is_boundary(halfedge)) halfedge = mesh.opposite_halfedge_handle(halfedge);
+  QuadMeshVertex origin;
+  origin.face = mesh.face_handle(halfedge).idx();
+  origin.on_boundary = true;
+  const auto ids = surface_.face_vertices(origin.face);
+  for (int c = 0; c < 3; ++c) origin.barycentric[c] = ids[c] == u ? 1.0 - t : ids[c] == w ? t : 0.0;
+  return origin;
+}
+
+double ReferenceBoundary::ChordDeviation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from,
+                                         double span) const {
+  const Loop& l = loops_[loop];
+  const size_t n = l.vertices.size();
+  // The span as a polyline: its ends and the loop vertices strictly inside it.
+  std::vector<Eigen::Vector3d> polyline;
+  int k = 0;
+  double t = 0.0;
+  polyline.push_back(Position(loop, from, &k, &t));
+  const double length = l.arc.back();
+  for (size_t step = 1; step <= n; ++step) {
+    const size_t v = (k + step) % n;
+    double ahead = l.arc[v] - std::fmod(from, length);
+    if (ahead <= 0.0) ahead += length;
+    if (ahead >= span) break;
+    polyline.push_back(surface_.position(l.vertices[v]));
+  }
+  polyline.push_back(Position(loop, from + span, &k, &t));
+  double deviation = 0.0;
+  for (const auto& p : polyline) deviation = std::max(deviation, PointSegmentDistance(p, a, b));
+  for (int s = 0; s <= kChordSamples; ++s) {
+    const Eigen::Vector3d p = a + (b - a) * (double(s) / kChordSamples);
+    double d = INFINITY;
+    for (size_t i = 0; i + 1 < polyline.size(); ++i) d = std::min(d, PointSegmentDistance(p, polyline[i], polyline[i + 1]));
+    deviation = std::max(deviation, d);
+  }
+  return deviation;
+}
+
+namespace {
+
+// The boundary between two points of one loop, the shorter way round: the walk starts at arc
+// `from` and goes forward by `span`; a_first says whether it starts at a (else at b).
+struct Span {
+  bool ok = false;
+  bool a_first = true;
+  double from = 0.0, span = 0.0;
+};
+
+Span Between(const ReferenceBoundary& boundary, const ReferenceBoundary::Location& a,
+             const ReferenceBoundary::Location& b) {
+  Span s;
+  if (a.loop < 0 || a.loop != b.loop) return s;
+  const double length = boundary.length(a.loop);
+  double forward = std::fmod(b.arc - a.arc, length);
+  if (forward < 0.0) forward += length;
+  s.a_first = forward <= length - forward;
+  s.from = s.a_first ? a.arc : b.arc;
+  s.span = s.a_first ? forward : length - forward;
+  s.ok = s.span > 0.0 && s.span <= 0.5 * length;
+  return s;
+}
+
+// Slides boundary vertices (not corners) along the boundary so that fewer chords need an
+// extra vertex. Greedy along each mesh boundary loop, starting at a corner if it has one:
+// a vertex keeps its place if its chord from the previous (already placed) vertex is within
+// tolerance there, else it moves back to the farthest place where it is; where the chord
+// needs extra vertices anyway, the vertex moves as far forward as those allow (slack for
+// the chords that follow). Every vertex stays within max_slide (arc length) of where the
+// level lines put it and keeps kSlideMargin of the span to its neighbours; a move that
+// would give a face at the vertex an angle below min(20°, what it had), or an edge at it
+// shorter than min(min_edge, what it had), is undone.
+// Returns the number of vertices moved.
+int SlideBoundaryVertices(const ReferenceBoundary& boundary, double tolerance, double max_slide, double min_edge,
+                          const std::vector<std::vector<int>>& faces,
+                          const std::map<std::pair<int, int>, int>& face_of, std::vector<Eigen::Vector3d>* position,
+                          std::vector<QuadMeshVertex>* origin) {
+  if (!(max_slide > 0.0)) return 0;
+  std::map<int, int> next;  // along the mesh boundary, in the faces' orientation
+  for (const auto& [halfedge, f] : face_of)
+    if (!face_of.count({halfedge.second, halfedge.first})) next[halfedge.first] = halfedge.second;
+  std::vector<std::vector<int>> faces_at(position->size());
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (const int v : faces[f]) faces_at[v].push_back(int(f));
+  const auto smallest_angle = [&](int v) {
+    double angle = M_PI;
+    for (const int f : faces_at[v]) angle = std::min(angle, ShapeAngle(*position, faces[f]));
+    return angle;
+  };
+  const auto shortest_edge = [&](int v) {
+    double shortest = INFINITY;
+    for (const int f : faces_at[v]) {
+      const auto& face = faces[f];
+      const size_t k = std::find(face.begin(), face.end(), v) - face.begin(), m = face.size();
+      for (const int w : {face[(k + 1) % m], face[(k + m - 1) % m]})
+        shortest = std::min(shortest, ((*position)[w] - (*position)[v]).norm());
+    }
+    return shortest;
+  };
+  std::set<int> visited;
+  int moved = 0;
+  for (const auto& [first, unused] : next) {
+    if (visited.count(first)) continue;
+    // The loop through `first`, starting at a corner if there is one.
+    std::vector<int> loop;
+    for (int v = first; !visited.count(v) && next.count(v); v = next.at(v)) loop.push_back(v), visited.insert(v);
+    const auto corner = std::find_if(loop.begin(), loop.end(), [&](int v) { return (*origin)[v].corner; });
+    if (corner != loop.end()) std::rotate(loop.begin(), corner, loop.end());
+    const size_t n = loop.size();
+    if (n < 3) continue;
+    // Arc length along the walk from loop[0]; the walk must go one way round the reference loop.
+    const auto l0 = boundary.Locate((*position)[loop[0]]);
+    const Span first_step = Between(boundary, l0, boundary.Locate((*position)[loop[1]]));
+    if (!first_step.ok) continue;
+    const bool forward = first_step.a_first;
+    std::vector<double> t(n + 1, 0.0);
+    bool consistent = true;
+    for (size_t i = 1; i <= n && consistent; ++i) {
+      const Span step = Between(boundary, boundary.Locate((*position)[loop[i - 1]]),
+                                boundary.Locate((*position)[loop[i % n]]));
+      consistent = step.ok && step.a_first == forward && boundary.Locate((*position)[loop[i % n]]).loop == l0.loop;
+      t[i] = t[i - 1] + step.span;
+    }
+    if (!consistent) continue;
+    const auto arc = [&](double u) { return forward ? l0.arc + u : l0.arc - u; };
+    const auto point = [&](double u) {
+      Eigen::Vector3d p;
+      boundary.PointAt(l0.loop, arc(u), &p);
+      return p;
+    };
+    // Deviation of the chord u0 → u1 cut into k equal pieces.
+    const auto deviation = [&](double u0, double u1, int k) {
+      double d = 0.0;
+      const double piece = (u1 - u0) / k;
+      for (int j = 0; j < k; ++j) {
+        const double a = u0 + j * piece, b = a + piece;
+        d = std::max(d, boundary.ChordDeviation(point(a), point(b), l0.loop, forward ? arc(a) : arc(b), piece));
+      }
+      return d;
+    };
+    double previous = 0.0;
+    for (size_t i = 1; i < n; ++i) {
+      const int v = loop[i];
+      double place = t[i];
+      if (!(*origin)[v].corner) {
+        const double lo = std::max(t[i] - max_slide, previous + kSlideMargin * (t[i] - previous));
+        const double hi = std::min(t[i] + max_slide, t[i + 1] - kSlideMargin * (t[i + 1] - t[i]));
+        if (lo < hi) {
+          int k = 1;
+          while (k < kMaxPieces && deviation(previous, lo, k) > tolerance) ++k;
+          const bool keep = k == 1 && t[i] >= lo && t[i] <= hi && deviation(previous, t[i], 1) <= tolerance;
+          if (!keep) {
+            double a = lo, b = hi;  // farthest place in [lo, hi] where k pieces are within tolerance
+            if (deviation(previous, hi, k) <= tolerance) {
+              a = hi;
+            } else {
+              for (int it = 0; it < 40; ++it) {
+                const double mid = 0.5 * (a + b);
+                (deviation(previous, mid, k) <= tolerance ? a : b) = mid;
+              }
+            }
+            place = a;
+          }
+        }
+      }
+      if (place != t[i]) {
+        const double angle_before = smallest_angle(v), edge_before = shortest_edge(v);
+        const Eigen::Vector3d old_position = (*position)[v];
+        Eigen::Vector3d p;
+        const QuadMeshVertex slid = boundary.PointAt(l0.loop, arc(place), &p);
+        (*position)[v] = p;
+        if (smallest_angle(v) < std::min(angle_before, kGoodAngle) || shortest_edge(v) < std::min(edge_before, min_edge)) {
+          (*position)[v] = old_position;
+          place = t[i];
+        } else {
+          (*origin)[v] = slid;
+          ++moved;
+        }
+      }
+      previous = place;
+    }
+  }
+  return moved;
+}
+
+}  // namespace
+
+int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double max_slide, double min_edge,
+                         ExtractedMesh* out) {
+  if (!(tolerance > 0.0)) return 0;
+  const ReferenceBoundary boundary(surface);
+  PolyMesh& mesh = out->mesh;
+  std::vector<Eigen::Vector3d> position;
+  for (const auto v : mesh.vertices()) position.push_back(ToEigen(mesh.point(v)));
+  std::vector<QuadMeshVertex>& origin = out->origin;
+  std::vector<std::vector<int>> faces;
+  for (const auto f : mesh.faces()) {
+    std::vector<int> face;
+    for (const auto v : mesh.fv_range(f)) face.push_back(v.idx());
+    faces.push_back(std::move(face));
+  }
+  std::map<std::pair<int, int>, int> face_of;  // halfedge → face
+  const auto register_face = [&](int f) {
+    const auto& face = faces[f];
+    for (size_t k = 0; k < face.size(); ++k) face_of[{face[k], face[(k + 1) % face.size()]}] = f;
+  };
+  for (size_t f = 0; f < faces.size(); ++f) register_face(int(f));
+  std::deque<std::pair<int, int>> queue;
+  for (const auto& [halfedge, f] : face_of)
+    if (!face_of.count({halfedge.second, halfedge.first}) && origin[halfedge.first].on_boundary &&
+        origin[halfedge.second].on_boundary)
+      queue.push_back(halfedge);
+  // 1. Slide boundary vertices along the boundary (at most max_slide from where the level
+  //    lines put them) to even out neighbouring chords, so that fewer vertices are needed.
+  const int slid = SlideBoundaryVertices(boundary, tolerance, max_slide, min_edge, faces, face_of, &position, &origin);
+  std::vector<ReferenceBoundary::Location> located(position.size());
+  std::vector<char> is_located(position.size(), 0);
+  const auto locate = [&](int v) {
+    if (v >= int(located.size())) located.resize(v + 1), is_located.resize(v + 1, 0);
+    if (!is_located[v]) located[v] = boundary.Locate(position[v]), is_located[v] = 1;
+    return located[v];
+  };
+
+  // 2. Split the chords that are still too far from the boundary.
+  int inserted = 0;
+  const int max_insertions = 4 * static_cast<int>(position.size()) + 16;  // a guard, never reached in practice
+  while (!queue.empty() && inserted < max_insertions) {
+    const auto [a, b] = queue.front();
+    queue.pop_front();
+    const auto found = face_of.find({a, b});
+    if (found == face_of.end()) continue;
+    const int f = found->second;
+    const auto la = locate(a), lb = locate(b);
+    const Span span = Between(boundary, la, lb);
+    if (!span.ok) continue;
+    const double from = span.from;
+    if (boundary.ChordDeviation(position[a], position[b], la.loop, from, span.span) <= tolerance) continue;
+
+    // The new boundary vertex m halfway along the boundary between a and b.
+    const int m = static_cast<int>(position.size());
+    Eigen::Vector3d p;
+    origin.push_back(boundary.PointAt(la.loop, from + 0.5 * span.span, &p));
+    position.push_back(p);
+    // The face as [b, v1, ..., vr, a] (its edge a → b closes the loop), then cut by m – v_j
+    // into [m, b, v1, ..., vj] and [vj, ..., vr, a, m].
+    std::vector<int> loop = faces[f];
+    std::rotate(loop.begin(), std::find(loop.begin(), loop.end(), b), loop.end());
+    const int r = static_cast<int>(loop.size()) - 2;
+    std::tuple<bool, bool, bool, int, double> best_key{false, false, false, -1, -INFINITY};
+    std::vector<int> best1, best2;
+    for (int j = 1; j <= r; ++j) {
+      std::vector<int> q1{m}, q2;
+      for (int i = 0; i <= j; ++i) q1.push_back(loop[i]);
+      for (int i = j; i <= r + 1; ++i) q2.push_back(loop[i]);
+      q2.push_back(m);
+      const double angle = std::min(ShapeAngle(position, q1), ShapeAngle(position, q2));
+      const bool long_enough = (position[loop[j]] - position[m]).norm() >= min_edge;
+      const std::tuple<bool, bool, bool, int, double> key{!origin[loop[j]].on_boundary, long_enough,
+                                                          angle >= kGoodAngle,
+                                                          int(q1.size() == 4) + int(q2.size() == 4), angle};
+      if (key > best_key) best_key = key, best1 = q1, best2 = q2;
+    }
+    for (size_t k = 0; k < faces[f].size(); ++k) face_of.erase({faces[f][k], faces[f][(k + 1) % faces[f].size()]});
+    faces[f] = best1;
+    faces.push_back(best2);
+    register_face(f);
+    register_face(static_cast<int>(faces.size()) - 1);
+    queue.push_back({a, m});
+    queue.push_back({m, b});
+    ++inserted;
+  }
+  out->stats.slid_boundary_vertices += slid;
+  if (inserted == 0 && slid == 0) return 0;
+
+  PolyMesh refined;
+  for (const auto& q : position) refined.add_vertex(ToOpenMesh(q));
+  for (const auto& face : faces) {
+    std::vector<VertexHandle> handles;
+    for (const int v : face) handles.push_back(VertexHandle(v));
+    if (!refined.add_face(handles).is_valid()) ++out->stats.rejected_faces;
+  }
+  mesh = std::move(refined);
+  out->stats.refined_boundary_edges += inserted;
+  return inserted;
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,71 @@
+// Mesh boundaries that follow a curved reference boundary (SPEC stage 5 `extract`).
+//
+// The extracted mesh's boundary vertices lie on the reference boundary, but its boundary
+// edges are chords: along the Great Court's Reading Room ring (radius 22.2 m) a 3 m chord
+// stands 0.05 m off the ring (sagitta L²/8R). RefineBoundaryChords inserts boundary
+// vertices where a chord is further than a tolerance from the reference boundary and cuts
+// the cell off by a diagonal from the new vertex, so that no cell gets three consecutive
+// vertices on a curved boundary: the ring is a horizontal circle, and a panel with three
+// of its vertices on it would have to be horizontal to be planar.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/quad_extraction.h"
+#include "geometry/surface_model.h"
+
+namespace pqlayout {
+
+// The reference surface's boundary loops as polylines parametrised by arc length.
+class ReferenceBoundary {
+ public:
+  explicit ReferenceBoundary(const SurfaceModel& surface);
+
+  struct Location {
+    int loop = -1;          // index into SurfaceModel::boundary_loops()
+    double arc = 0.0;       // arc length from the loop's first vertex, metres
+    double distance = 0.0;  // from the query point to the loop
+  };
+  // The closest point of any boundary loop (brute force over the boundary edges).
+  Location Locate(const Eigen::Vector3d& p) const;
+  double Distance(const Eigen::Vector3d& p) const { return Locate(p).distance; }
+
+  // The point at arc length `arc` (modulo the length) of loop `loop`: its position and its
+  // reference triangle with barycentric coordinates (on_boundary set).
+  QuadMeshVertex PointAt(int loop, double arc, Eigen::Vector3d* position) const;
+  double length(int loop) const { return loops_[loop].arc.back(); }
+
+  // Largest distance between the segment a–b and the part of `loop` from arc `from` forward
+  // by `span` metres (both ways: points of the segment to the loop, the loop's vertices in
+  // the span to the segment).
+  double ChordDeviation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from,
+                        double span) const;
+
+ private:
+  struct Loop {
+    std::vector<int> vertices;  // reference vertex ids
+    std::vector<double> arc;    // arc length at each vertex, and the total at the end (size n + 1)
+  };
+  Eigen::Vector3d Position(int loop, double arc, int* segment, double* t) const;
+
+  const SurfaceModel& surface_;
+  std::vector<Loop> loops_;
+};
+
+// Keeps the mesh boundary within `tolerance` (metres) of the reference boundary, in two steps:
+// 1. slides boundary vertices (not corners) along the boundary, at most max_slide (metres of
+//    arc) from where the level lines end and never making an angle below 20° or an edge
+//    below min_edge that was not there, so that fewer chords need a new vertex;
+// 2. splits every boundary edge still further than `tolerance` from the reference boundary at
+//    the arc-length midpoint of the boundary between its ends, until none is, and cuts each
+//    affected cell by the diagonal from the new vertex that gives the best pieces (ending at
+//    an interior vertex if possible, then at least min_edge long, then all angles ≥ 20°,
+//    then the most quads, then the best smallest angle).
+// tolerance ≤ 0 does nothing. Returns the number of inserted vertices (also added to
+// out->stats.refined_boundary_edges; moved vertices to out->stats.slid_boundary_vertices).
+int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double max_slide, double min_edge,
+                         ExtractedMesh* out);
+
+}  // namespace pqlayout

@@ -1,0 +1,33 @@
+#include "geometry/polygon_shape.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pqlayout {
+
+Eigen::Vector3d NewellNormal(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon) {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < polygon.size(); ++k)
+    normal += position[polygon[k]].cross(position[polygon[(k + 1) % polygon.size()]]);
+  return normal.norm() > 0.0 ? Eigen::Vector3d(normal.normalized()) : normal;
+}
+
+double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon,
+                  const Eigen::Vector3d& normal) {
+  double smallest = M_PI;
+  const size_t n = polygon.size();
+  for (size_t k = 0; k < n; ++k) {
+    const Eigen::Vector3d p = position[polygon[k]];
+    const Eigen::Vector3d in = p - position[polygon[(k + n - 1) % n]], out = position[polygon[(k + 1) % n]] - p;
+    const double turn = std::atan2(in.cross(out).dot(normal), in.dot(out));
+    smallest = std::min({smallest, M_PI - turn, turn});
+  }
+  return smallest;
+}
+
+double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon) {
+  const Eigen::Vector3d normal = NewellNormal(position, polygon);
+  return normal.norm() > 0.0 ? ShapeAngle(position, polygon, normal) : -1.0;
+}
+
+}  // namespace pqlayout
