@@ -322,6 +322,8 @@ KeyTable::KeyTable(Config* c) {
   Path("guidance.file", &g.file, "guidance.source = file: per-face CSV id,dx,dy,dz[,weight]");
 
   Number("layout.spacing", &c->layout.spacing, kPositive, "h, distance between neighbouring level lines, m");
+  Choice("layout.density", &c->layout.density, {"auto", "spacing", "panel_area"},
+         "spacing: level lines h apart; panel_area: φ, ψ then scaled together so that the mean panel area is h² (equal node counts for layouts that cross at different angles); auto: panel_area in `compare`, spacing otherwise");
 
   auto& lw = c->levelset.weights;
   Number("levelset.weights.alignment", &lw.alignment, kNonNegative, "φ's level lines follow the guidance field");

@@ -68,6 +68,12 @@ struct GuidanceOptions {
 
 struct LayoutOptions {
   double spacing = 3.0;  // h: distance between neighbouring level lines, m
+  // spacing: the level lines are solved to lie h apart; panel_area: afterwards φ and ψ are
+  // scaled by one common factor so that the mean panel (cell) area is h² — layouts whose
+  // families cross at different angles then get the same number of nodes per area; auto:
+  // spacing for `run` and `sweep`, panel_area for `compare` (a structural comparison is only
+  // fair at equal node counts, as in the paper).
+  std::string density = "auto";
 };
 
 // Defaults from a weight sweep on the Great Court (README, "Level sets"): the terms are

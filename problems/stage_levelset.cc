@@ -13,6 +13,7 @@
 #include "geometry/remesh.h"
 #include "problems/figures.h"
 #include "problems/levelset.h"
+#include "problems/panel_area.h"
 #include "problems/residuals/alignment_residual.h"
 #include "problems/residuals/conjugacy_residual.h"
 #include "problems/residuals/smoothness_residual.h"
@@ -555,6 +556,13 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   LevelSetSolution& solution = state->levelsets;
   PQ_RETURN_IF_ERROR(SolveLevelSets(surface, state->guidance, state->config.levelset, state->config.layout.spacing,
                                     &solution));
+  double density_scale = 1.0;
+  if (state->config.layout.density == "panel_area") {
+    density_scale = PanelAreaScale(surface, solution.phi, solution.psi, state->config.layout.spacing);
+    for (double& value : solution.phi) value *= density_scale;
+    for (double& value : solution.psi) value *= density_scale;
+    LOG(INFO) << "levelset: φ and ψ scaled by " << density_scale << " for a mean panel area of h²";
+  }
   auto phi = surface.VertexField<double>("phi");
   auto psi = surface.VertexField<double>("psi");
   for (int v = 0; v < surface.num_vertices(); ++v) {
@@ -565,6 +573,7 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   (*metrics)["initial_guess"] = solution.initial.ToJson();
   (*metrics)["ceres"] = solution.solver;
   (*metrics)["working_mesh_triangles"] = solution.working_faces;
+  (*metrics)["density_scale"] = density_scale;
   PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
   PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
   const auto& m = solution.metrics;

@@ -187,6 +187,9 @@ TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
     const auto report = ReadReport(dir + "/cmp/" + source);
     EXPECT_EQ(report["config"]["guidance"]["source"], source);
     EXPECT_TRUE(report["stages"].contains("analyze")) << source;
+    // layout.density auto → both layouts at mean panel area h² (the scale is not 1).
+    EXPECT_EQ(report["config"]["layout"]["density"], "panel_area") << source;
+    EXPECT_GT(std::abs(report["stages"]["levelset"]["density_scale"].get<double>() - 1.0), 1e-6) << source;
   }
   const auto comparison = nlohmann::json::parse(ReadAll(dir + "/cmp/compare.json"));
   bool has_mean = false;
