@@ -335,6 +335,8 @@ KeyTable::KeyTable(Config* c) {
   Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000, "Ceres iterations of the φ solve and of the ψ solve");
   Integer("levelset.joint_iterations", &c->levelset.joint_iterations, 0, 100000,
           "Ceres iterations of the final solve of φ and ψ together (0: none)");
+  Integer("levelset.crossing_rounds", &c->levelset.crossing_rounds, 0, 100,
+          "local re-solves after it that raise transversality on the faces still crossing below levelset.min_angle (0: none)");
   Number("levelset.working_edge", &c->levelset.working_edge, kNonNegative,
          "edge length of the mesh φ, ψ are solved on, m (0: 0.4 h); a reference finer than 0.7 × this is remeshed");
 

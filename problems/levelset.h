@@ -7,6 +7,9 @@
 // Every term is a Ceres autodiff residual block (problems/residuals/*.h); weights are
 // levelset.weights.<term>. Initial guess: a Poisson solve (CHOLMOD) for φ towards the
 // consistently oriented field n × d / h, then one for ψ towards the conjugate direction.
+// Solves: φ alone, ψ with φ held, both together, then up to levelset.crossing_rounds local
+// re-solves with the transversality weight raised on the faces still crossing below
+// levelset.min_angle (the hinge is a penalty and loses a few percent of faces otherwise).
 #pragma once
 
 #include <vector>

@@ -2,6 +2,7 @@
 #include <ceres/ceres.h>
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <queue>
@@ -294,19 +295,30 @@ Status Solve(const std::string& name, int max_iterations, ceres::Problem* proble
 
 ceres::LossFunction* Weight(double w) { return new ceres::ScaledLoss(nullptr, w, ceres::TAKE_OWNERSHIP); }
 
+// `live`: vertex mask; a term is added if it touches a live vertex (nullptr: all).
+bool Live(const std::vector<char>* live, std::initializer_list<int> ids) {
+  if (live == nullptr) return true;
+  for (const int v : ids)
+    if ((*live)[v]) return true;
+  return false;
+}
+
 void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, std::vector<double>* u,
-                   ceres::Problem* problem) {
+                   ceres::Problem* problem, const std::vector<char>* live = nullptr) {
   if (weight <= 0.0) return;
-  for (const auto& e : edges)
+  for (const auto& e : edges) {
+    if (!Live(live, {e.i, e.j, e.k, e.l})) continue;
     problem->AddResidualBlock(SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h), Weight(weight),
                               &(*u)[e.i], &(*u)[e.j], &(*u)[e.k], &(*u)[e.l]);
+  }
 }
 
 void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, std::vector<double>* u,
-                ceres::Problem* problem) {
+                ceres::Problem* problem, const std::vector<char>* live = nullptr) {
   if (weight <= 0.0) return;
   for (int f = 0; f < s.num_faces(); ++f) {
     const auto ids = s.face_vertices(f);
+    if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
     problem->AddResidualBlock(SpacingResidual::Create(geo.G[f], s.face_area(f), h), Weight(weight), &(*u)[ids[0]],
                               &(*u)[ids[1]], &(*u)[ids[2]]);
   }
@@ -392,6 +404,51 @@ LevelSetMetrics MeasureLevelSets(const SurfaceModel& surface, const GuidanceFiel
 
 namespace {
 
+// ---- Crossing-angle rounds ------------------------------------------------------------
+//
+// The transversality hinge is a penalty: at the joint optimum it balances against
+// alignment and spacing, and leaves a few percent of the faces crossing below min_angle
+// (on the Great Court near the guidance singularities and the rectangle's corners; with a
+// global weight ×10 the solve stalls and folds instead). So after the joint solve the
+// faces still crossing below min_angle + kCrossingSlack get their transversality weight
+// multiplied by kCrossingBoost, the hinge is raised by kCrossingMargin, and φ, ψ are
+// re-solved near those faces only: ψ within kPsiRings vertex rings, φ within kPhiRings
+// (φ moves as little as possible, to keep its alignment); the rest is held. Repeated until
+// no face crosses below min_angle or levelset.crossing_rounds is used up.
+constexpr double kCrossingSlack = 1.0;   // degrees above min_angle that still count as failing
+constexpr double kCrossingMargin = 1.5;  // degrees the hinge is raised by in the rounds
+constexpr double kCrossingBoost = 4.0;   // weight factor per round on a failing face
+constexpr int kPhiRings = 1, kPsiRings = 3;
+constexpr int kCrossingIterations = 30;  // Ceres iterations per round
+
+// Marks the failing faces (see above), multiplies their boost and returns how many faces
+// cross below min_angle (0: nothing to do). live_phi / live_psi: the vertices free to move.
+int RaiseCrossings(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<double>& phi,
+                   const std::vector<double>& psi, double min_angle, std::vector<double>* boost,
+                   std::vector<char>* live_phi, std::vector<char>* live_psi) {
+  int below = 0;
+  const double sin_failing = std::sin(min_angle + kCrossingSlack / kDegrees);
+  std::vector<char> live(s.num_vertices(), 0);
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const Eigen::Vector3d a = Gradient(geo, s, f, phi), b = Gradient(geo, s, f, psi);
+    const double sine = s.face_normal(f).dot(a.cross(b)) / (a.norm() * b.norm());
+    if (!(sine >= std::sin(min_angle))) ++below;
+    if (sine >= sin_failing) continue;
+    (*boost)[f] *= kCrossingBoost;
+    for (const int v : s.face_vertices(f)) live[v] = 1;
+  }
+  for (int ring = 1; ring <= std::max(kPhiRings, kPsiRings); ++ring) {
+    std::vector<char> next = live;
+    for (int v = 0; v < s.num_vertices(); ++v)
+      if (live[v])
+        for (const auto u : s.mesh().vv_range(VertexHandle(v))) next[u.idx()] = 1;
+    live.swap(next);
+    if (ring == kPhiRings) *live_phi = live;
+    if (ring == kPsiRings) *live_psi = live;
+  }
+  return below;
+}
+
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
                    LevelSetSolution* solution) {
@@ -415,20 +472,24 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   std::vector<double>& phi = solution->phi;
   std::vector<double>& psi = solution->psi;
   // φ's terms: alignment + spacing + smoothness.
-  auto add_phi_terms = [&](ceres::Problem* problem) {
+  auto add_phi_terms = [&](ceres::Problem* problem, const std::vector<char>* live = nullptr) {
     for (int f = 0; f < s.num_faces(); ++f) {
       const auto ids = s.face_vertices(f);
+      if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
       if (w.alignment > 0.0 && g.weight[f] > 0.0)
         problem->AddResidualBlock(AlignmentResidual::Create(geo.G[f], g.direction[f], g.weight[f], s.face_area(f), h),
                                   Weight(w.alignment), &phi[ids[0]], &phi[ids[1]], &phi[ids[2]]);
     }
-    AddSpacing(s, geo, h, w.spacing, &phi, problem);
-    AddSmoothness(edges, h, w.smoothness, &phi, problem);
+    AddSpacing(s, geo, h, w.spacing, &phi, problem, live);
+    AddSmoothness(edges, h, w.smoothness, &phi, problem, live);
   };
+  std::vector<double> boost(s.num_faces(), 1.0);  // per-face transversality weight factor (RaiseCrossings)
   // ψ's terms: conjugacy + transversality (both also involve φ) + spacing + smoothness.
-  auto add_psi_terms = [&](ceres::Problem* problem) {
+  double hinge_angle = min_angle;
+  auto add_psi_terms = [&](ceres::Problem* problem, const std::vector<char>* live = nullptr) {
     for (int f = 0; f < s.num_faces(); ++f) {
       const auto ids = s.face_vertices(f);
+      if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
       const std::vector<double*> blocks{&phi[ids[0]], &phi[ids[1]], &phi[ids[2]],
                                         &psi[ids[0]], &psi[ids[1]], &psi[ids[2]]};
       const Eigen::Vector3d& n = s.face_normal(f);
@@ -436,11 +497,11 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
         problem->AddResidualBlock(ConjugacyResidual::Create(geo.G[f], n, geo.S[f], geo.flat_curvature, s.face_area(f)),
                                   Weight(w.conjugacy), blocks);
       if (w.transversality > 0.0)
-        problem->AddResidualBlock(TransversalityResidual::Create(geo.G[f], n, min_angle, s.face_area(f), h),
-                                  Weight(w.transversality), blocks);
+        problem->AddResidualBlock(TransversalityResidual::Create(geo.G[f], n, hinge_angle, s.face_area(f), h),
+                                  Weight(w.transversality * boost[f]), blocks);
     }
-    AddSpacing(s, geo, h, w.spacing, &psi, problem);
-    AddSmoothness(edges, h, w.smoothness, &psi, problem);
+    AddSpacing(s, geo, h, w.spacing, &psi, problem, live);
+    AddSmoothness(edges, h, w.smoothness, &psi, problem, live);
   };
 
   // 1. φ alone.
@@ -461,6 +522,21 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     add_phi_terms(&joint_problem);
     add_psi_terms(&joint_problem);
     PQ_RETURN_IF_ERROR(Solve("joint", options.joint_iterations, &joint_problem, &solution->solver["joint"]));
+  }
+  // 4. Local re-solves for the crossing angle (see RaiseCrossings).
+  for (int round = 0; round < options.crossing_rounds; ++round) {
+    std::vector<char> live_phi, live_psi;
+    if (RaiseCrossings(s, geo, phi, psi, min_angle, &boost, &live_phi, &live_psi) == 0) break;
+    hinge_angle = min_angle + kCrossingMargin / kDegrees;
+    ceres::Problem local;
+    add_phi_terms(&local, &live_psi);
+    add_psi_terms(&local, &live_psi);
+    for (int v = 0; v < s.num_vertices(); ++v) {
+      if (!live_phi[v] && local.HasParameterBlock(&phi[v])) local.SetParameterBlockConstant(&phi[v]);
+      if (!live_psi[v] && local.HasParameterBlock(&psi[v])) local.SetParameterBlockConstant(&psi[v]);
+    }
+    const std::string name = "crossing_round_" + std::to_string(round + 1);
+    PQ_RETURN_IF_ERROR(Solve(name, kCrossingIterations, &local, &solution->solver[name]));
   }
 
   solution->metrics = Measure(s, geo, g, phi, psi, options.min_angle);
