@@ -259,13 +259,18 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
               << report->closeness_max << " m (" << summary.iterations.size() - 1 << " iterations, "
               << summary.total_time_in_seconds << " s)";
     // Stalled on the creases of the reference (δ max improved by less than half): let the
-    // vertices off it. The weights are raised either way — a first off-surface round at the
-    // stalled round's weight only undid part of it (Great Court, h = 1.65 m: δ max 0.05 →
-    // 0.10), so raising saves that round.
-    if (on_surface && report->planarity_max > 0.5 * previous) on_surface = false;
-    planarity_weight *= kPlanarityRaise;
-    closeness_weight *= kClosenessRaise;
-    boundary_weight *= kClosenessRaise;
+    // vertices off it. The weights are raised at the switch too — a first off-surface round
+    // at the stalled round's weight only undid part of it (Great Court, h = 1.65 m: δ max
+    // 0.05 → 0.10), so raising saves that round — except with the edge-length hinge, which
+    // rides on the planarity weight: one more ×30 against closeness' ×3 pushed boundary
+    // vertices 6.3 m off the reference (curvature layout, h = 3 m, hinge weight 1e-3).
+    const bool switching = on_surface && report->planarity_max > 0.5 * previous;
+    if (switching) on_surface = false;
+    if (!switching || w.edge_length == 0.0) {
+      planarity_weight *= kPlanarityRaise;
+      closeness_weight *= kClosenessRaise;
+      boundary_weight *= kClosenessRaise;
+    }
   }
   for (int v = 0; v < nv; ++v)
     report->max_displacement = std::max(report->max_displacement, (ToEigen(mesh.point(VertexHandle(v))) - start[v]).norm());
