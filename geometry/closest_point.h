@@ -1,5 +1,8 @@
 // Closest points on the reference surface (CGAL's AABB tree over its triangles) and on its
-// boundary polylines (brute force over the boundary edges, which are few).
+// boundary polylines (a second AABB tree over the boundary edges). Both are exact; an
+// optional hint (a triangle, resp. boundary edge, index — e.g. the previous answer for a point
+// that moved a little) only makes the search faster: the tree traversal starts from the
+// hint's distance instead of a k-d-tree guess and prunes every box farther away.
 #pragma once
 
 #include <memory>
@@ -23,13 +26,12 @@ class ClosestPointQuery {
  public:
   explicit ClosestPointQuery(const SurfaceModel& surface);
   ~ClosestPointQuery();
-  SurfacePoint OnSurface(const Eigen::Vector3d& p) const;
-  SurfacePoint OnBoundary(const Eigen::Vector3d& p) const;
+  SurfacePoint OnSurface(const Eigen::Vector3d& p, int hint = -1) const;
+  SurfacePoint OnBoundary(const Eigen::Vector3d& p, int hint = -1) const;
 
  private:
   struct Tree;
   std::unique_ptr<Tree> tree_;
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> boundary_edges_;
 };
 
 }  // namespace pqlayout

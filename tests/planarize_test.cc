@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <random>
+#include <limits>
+#include <algorithm>
 
 #include "geometry/planarity.h"
 #include "problems/planarize.h"
@@ -134,6 +136,66 @@ TEST(SurfaceManifold, StepsStayOnTheReferenceAndPlusJacobianIsTheTangentBasis) {
     const double along = Uniform(-3, 3);
     ASSERT_TRUE(boundary.Plus(b.data(), &along, y.data()));
     EXPECT_LT(query.OnBoundary(y).distance, 1e-12);
+  }
+}
+
+// A hint (any triangle / boundary edge, near or far) only speeds the search up: the answer is
+// the same closest point as without one.
+TEST(ClosestPointQuery, HintedSearchGivesTheSameClosestPoint) {
+  const SurfaceModel reference = WavyReference();
+  const ClosestPointQuery query(reference);
+  int boundary_edges = 0;
+  for (const auto& loop : reference.boundary_loops()) boundary_edges += static_cast<int>(loop.vertices.size());
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Vector3d p(Uniform(-1, 7), Uniform(-1, 7), Uniform(-1, 1));
+    const SurfacePoint free = query.OnSurface(p);
+    const SurfacePoint hinted = query.OnSurface(p, static_cast<int>(Uniform(0, reference.num_faces() - 1)));
+    EXPECT_NEAR(hinted.distance, free.distance, 1e-12);
+    EXPECT_NEAR((hinted.point - free.point).norm(), 0.0, 1e-9);
+    const SurfacePoint edge = query.OnBoundary(p), hinted_edge = query.OnBoundary(p, static_cast<int>(Uniform(0, boundary_edges - 1)));
+    EXPECT_NEAR(hinted_edge.distance, edge.distance, 1e-12);
+    EXPECT_NEAR((hinted_edge.point - edge.point).norm(), 0.0, 1e-9);
+    // The boundary answer is the closest point of the boundary polylines (brute force).
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& loop : reference.boundary_loops())
+      for (size_t i = 0; i < loop.vertices.size(); ++i) {
+        const Eigen::Vector3d a = reference.position(loop.vertices[i]);
+        const Eigen::Vector3d ab = reference.position(loop.vertices[(i + 1) % loop.vertices.size()]) - a;
+        best = std::min(best, (a + std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) * ab - p).norm());
+      }
+    EXPECT_NEAR(edge.distance, best, 1e-12);
+  }
+}
+
+// The manifold remembers the triangles of its last two points. A step from the same state
+// after a rejected candidate is what a fresh manifold computes, and the chart at an accepted
+// candidate is the plane of a triangle the candidate lies on: a tangent step of 1e-7 into that
+// triangle needs no retraction (a stale chart — the previous point's triangle, tilted by up to
+// 0.1 rad here — would be off the surface by ~1e-8).
+TEST(SurfaceManifold, RememberedTrianglesGiveTheFreshAnswers) {
+  const SurfaceModel reference = WavyReference();
+  const ClosestPointQuery query(reference);
+  const SurfaceManifold kept(&query, false);
+  Eigen::Vector3d x = query.OnSurface({3.1, 2.9, 0.0}).point;
+  for (int trial = 0; trial < 50; ++trial) {
+    const double delta[2] = {Uniform(-0.3, 0.3), Uniform(-0.3, 0.3)};
+    Eigen::Vector3d y, y_fresh;
+    ASSERT_TRUE(kept.Plus(x.data(), delta, y.data()));
+    ASSERT_TRUE(SurfaceManifold(&query, false).Plus(x.data(), delta, y_fresh.data()));
+    EXPECT_NEAR((y - y_fresh).norm(), 0.0, 1e-12);
+    if (trial % 2 == 0) continue;  // "rejected": the next step starts from x again
+    double jacobian[6];
+    ASSERT_TRUE(kept.PlusJacobian(y.data(), jacobian));
+    const Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> B(jacobian);
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 16; ++k) {  // 16 directions: one points into the triangle even at a vertex
+      const double tiny[2] = {1e-7 * std::cos(k * M_PI / 8), 1e-7 * std::sin(k * M_PI / 8)};
+      Eigen::Vector3d z;
+      ASSERT_TRUE(kept.Plus(y.data(), tiny, z.data()));
+      best = std::min(best, (z - y - B * Eigen::Vector2d(tiny[0], tiny[1])).norm());
+    }
+    EXPECT_LT(best, 1e-13);
+    x = y;  // "accepted"
   }
 }
 
