@@ -709,11 +709,37 @@ void Quadrangulations(const std::vector<int>& polygon, std::vector<std::vector<s
     }
 }
 
-// A cell that touches no boundary and has 6 or 8 sides (where the curves fan out around a
-// singularity of the guidance) is cut into 2 or 3 quads by the diagonals that give the
-// best-shaped quads, if every quad angle is within [min_angle, 180° − min_angle]. The
-// singularity then becomes a vertex of valence 3 or 5, as in any quad mesh.
-int SplitInteriorEvenPolygons(double min_angle, Polygons* m) {
+// The smallest corner angle (ShapeAngle) over a cut of `face` into `pieces`, or −1 if a
+// diagonal of the cut is already an edge elsewhere (it would be doubled) or, with
+// `on_boundary` given, joins two boundary vertices (it would run along or across the
+// boundary).
+double CutScore(const Polygons& m, const std::vector<int>& face, const std::vector<std::vector<int>>& pieces,
+                const std::set<std::pair<int, int>>& halfedges, const std::vector<char>* on_boundary) {
+  double score = M_PI;
+  for (const auto& piece : pieces) {
+    score = std::min(score, ShapeAngle(m.position, piece));
+    for (size_t k = 0; k < piece.size(); ++k) {
+      const int a = piece[k], b = piece[(k + 1) % piece.size()];
+      if (CyclicallyAdjacent(face, a, b)) continue;
+      if (halfedges.count({a, b}) || halfedges.count({b, a})) return -1.0;
+      if (on_boundary != nullptr && (*on_boundary)[a] && (*on_boundary)[b]) return -1.0;
+    }
+  }
+  return score;
+}
+
+// Cells that are large polygons are cut into quads by the diagonals that give the
+// best-shaped quads, if every quad angle is within [min_angle, 180° − min_angle]:
+// - a cell that touches no boundary and has 6 or 8 sides (where the curves fan out around a
+//   singularity of the guidance): 2 or 3 quads; the singularity then becomes a vertex of
+//   valence 3 or 5, as in any quad mesh;
+// - a boundary cell of 6 to 10 sides (a level line that turned back near the boundary):
+//   quads, plus one triangle cut off at a boundary vertex if the number of sides is odd (so
+//   that every cell off the boundary stays a quad); no diagonal
+//   joins two boundary vertices. A large unbraced panel is both hard to make planar and
+//   the softest part of the frame.
+// Returns the number of interior and of boundary cells cut.
+std::pair<int, int> SplitLargePolygons(double min_angle, Polygons* m) {
   std::set<std::pair<int, int>> halfedges;
   for (const auto& face : m->faces)
     for (size_t k = 0; k < face.size(); ++k) halfedges.insert({face[k], face[(k + 1) % face.size()]});
@@ -721,31 +747,42 @@ int SplitInteriorEvenPolygons(double min_angle, Polygons* m) {
   for (const auto& [a, b] : halfedges)
     if (!halfedges.count({b, a})) on_boundary[a] = on_boundary[b] = 1;
   std::vector<std::vector<int>> faces;
-  int split = 0;
+  std::pair<int, int> split{0, 0};
   for (auto& face : m->faces) {
-    bool interior = face.size() == 6 || face.size() == 8;
-    for (const int v : face) interior &= !on_boundary[v];
+    const size_t n = face.size();
+    bool touches_boundary = false;
+    for (const int v : face) touches_boundary |= on_boundary[v] != 0;
     std::vector<std::vector<std::vector<int>>> options;
-    if (interior) Quadrangulations(face, &options);
+    if (!touches_boundary && (n == 6 || n == 8)) {
+      Quadrangulations(face, &options);
+    } else if (touches_boundary && n >= 6 && n <= 10 && n % 2 == 0) {
+      Quadrangulations(face, &options);
+    } else if (touches_boundary && n >= 7 && n <= 9) {
+      for (size_t i = 0; i < n; ++i) {  // a boundary corner face[i] cut off as a triangle, the rest in quads
+        if (!on_boundary[face[i]]) continue;  // the triangle must stay a boundary cell
+        const std::vector<int> ear{face[(i + n - 1) % n], face[i], face[(i + 1) % n]};
+        std::vector<int> rest;
+        for (size_t k = 1; k < n; ++k) rest.push_back(face[(i + k) % n]);
+        std::vector<std::vector<std::vector<int>>> quads;
+        Quadrangulations(rest, &quads);
+        for (auto& cut : quads) {
+          cut.push_back(ear);
+          options.push_back(std::move(cut));
+        }
+      }
+    }
     double best_score = min_angle;
     const std::vector<std::vector<int>>* best = nullptr;
-    for (const auto& quads : options) {
-      double score = M_PI;
-      for (const auto& quad : quads) {
-        score = std::min(score, ShapeAngle(m->position, quad));
-        for (size_t k = 0; k < 4; ++k)  // a diagonal that is already an edge would double it
-          if (!CyclicallyAdjacent(face, quad[k], quad[(k + 1) % 4]) &&
-              (halfedges.count({quad[k], quad[(k + 1) % 4]}) || halfedges.count({quad[(k + 1) % 4], quad[k]})))
-            score = -1.0;
-      }
-      if (score >= best_score) best_score = score, best = &quads;
+    for (const auto& pieces : options) {
+      const double score = CutScore(*m, face, pieces, halfedges, touches_boundary ? &on_boundary : nullptr);
+      if (score >= best_score) best_score = score, best = &pieces;
     }
     if (best == nullptr) {
       faces.push_back(std::move(face));
       continue;
     }
-    for (const auto& quad : *best) faces.push_back(quad);
-    ++split;
+    for (const auto& piece : *best) faces.push_back(piece);
+    ++(touches_boundary ? split.second : split.first);
   }
   m->faces = std::move(faces);
   return split;
@@ -885,7 +922,8 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
   if (pair_boundary_triangles) {
     out->stats.resplit_boundary_pairs = ResplitBoundaryTrianglePentagonPairs(&polygons);
     out->stats.collapsed_boundary_triangles = CollapseBoundaryTriangles(kMinResplitAngle, &polygons);
-    out->stats.split_interior_polygons = SplitInteriorEvenPolygons(kMinResplitAngle, &polygons);
+    std::tie(out->stats.split_interior_polygons, out->stats.split_boundary_polygons) =
+        SplitLargePolygons(kMinResplitAngle, &polygons);
   }
   Compact(&polygons);
 

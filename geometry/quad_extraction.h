@@ -53,6 +53,7 @@ struct ExtractionStats {
   int resplit_boundary_pairs = 0;  // boundary triangle + pentagon pairs re-split into two quads
   int collapsed_boundary_triangles = 0;  // crossings just inside the boundary moved onto it
   int split_interior_polygons = 0;       // interior 6- and 8-gons cut into quads
+  int split_boundary_polygons = 0;       // boundary 6- to 10-gons cut into quads (and a triangle)
   int refined_boundary_edges = 0;        // boundary vertices inserted where a chord left a curved boundary
   int slid_boundary_vertices = 0;        // boundary vertices moved along the boundary to even out chords
 };
