@@ -5,6 +5,7 @@
 #include <deque>
 #include <set>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "geometry/polygon_shape.h"
@@ -294,12 +295,11 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
   // 1. Slide boundary vertices along the boundary (at most max_slide from where the level
   //    lines put them) to even out neighbouring chords, so that fewer vertices are needed.
   const int slid = SlideBoundaryVertices(boundary, tolerance, max_slide, min_edge, faces, face_of, &position, &origin);
-  std::vector<ReferenceBoundary::Location> located(position.size());
-  std::vector<char> is_located(position.size(), 0);
+  std::vector<std::optional<ReferenceBoundary::Location>> located;  // per vertex, once
   const auto locate = [&](int v) {
-    if (v >= int(located.size())) located.resize(v + 1), is_located.resize(v + 1, 0);
-    if (!is_located[v]) located[v] = boundary.Locate(position[v]), is_located[v] = 1;
-    return located[v];
+    if (v >= int(located.size())) located.resize(v + 1);
+    if (!located[v]) located[v] = boundary.Locate(position[v]);
+    return *located[v];
   };
 
   // 2. Split the chords that are still too far from the boundary.
