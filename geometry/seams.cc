@@ -10,6 +10,15 @@
 namespace pqlayout {
 namespace {
 
+// Mean face_weight of the faces at the edge of halfedge h (1 if none).
+double EdgeWeight(const TriMesh& mesh, HalfedgeHandle h, const std::vector<double>& face_weight) {
+  double weight = 0.0;
+  int faces = 0;
+  for (const auto side : {h, mesh.opposite_halfedge_handle(h)})
+    if (mesh.face_handle(side).is_valid()) weight += face_weight[mesh.face_handle(side).idx()], ++faces;
+  return faces > 0 ? weight / faces : 1.0;
+}
+
 // Dijkstra from `sources` to the nearest vertex with is_target; in between only interior,
 // unblocked vertices and no boundary edges. Returns the chain source … target, or empty.
 template <typename IsTarget>
@@ -43,11 +52,7 @@ std::vector<int> ShortestPath(const SurfaceModel& s, const std::vector<double>& 
       const int w = mesh.to_vertex_handle(h).idx();
       if (is_source[w] || mesh.is_boundary(mesh.edge_handle(h))) continue;
       if (blocked[w] || (s.is_boundary(w) && !is_target(w))) continue;
-      double weight = 0.0;
-      int faces = 0;
-      for (const auto side : {h, mesh.opposite_halfedge_handle(h)})
-        if (mesh.face_handle(side).is_valid()) weight += face_weight[mesh.face_handle(side).idx()], ++faces;
-      const double cost = mesh.calc_edge_length(h) * (floor + (faces > 0 ? weight / faces : 1.0));
+      const double cost = mesh.calc_edge_length(h) * (floor + EdgeWeight(mesh, h, face_weight));
       if (d + cost < dist[w]) {
         dist[w] = d + cost;
         previous[w] = v;
@@ -98,6 +103,16 @@ std::vector<std::vector<int>> RouteSeams(const SurfaceModel& surface, const std:
     joined[l] = 1;
   }
   return paths;
+}
+
+double PathWeight(const SurfaceModel& surface, const std::vector<double>& face_weight, const std::vector<int>& path) {
+  const TriMesh& mesh = surface.mesh();
+  double total = 0.0;
+  for (size_t k = 0; k + 1 < path.size(); ++k) {
+    const auto h = mesh.find_halfedge(VertexHandle(path[k]), VertexHandle(path[k + 1]));
+    if (h.is_valid()) total += mesh.calc_edge_length(h) * EdgeWeight(mesh, h, face_weight);
+  }
+  return total;
 }
 
 Status SeamCut::Build(const SurfaceModel& surface, std::vector<std::vector<int>> paths,

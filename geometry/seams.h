@@ -36,6 +36,10 @@ namespace pqlayout {
 std::vector<std::vector<int>> RouteSeams(const SurfaceModel& surface, const std::vector<double>& face_weight,
                                          const std::vector<int>& tips, double floor = 0.05);
 
+// ∫ w ds along a path (w: the mean face_weight of each edge's faces): how much weighted
+// length a hidden branch cut along it would misalign.
+double PathWeight(const SurfaceModel& surface, const std::vector<double>& face_weight, const std::vector<int>& path);
+
 // One edge of a seam, between face `minus` (left of the path's direction, seen from the
 // normal) and face `plus`.
 struct SeamEdge {

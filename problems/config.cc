@@ -337,6 +337,9 @@ KeyTable::KeyTable(Config* c) {
           "Ceres iterations of the final solve of φ and ψ together (0: none)");
   Integer("levelset.crossing_rounds", &c->levelset.crossing_rounds, 0, 100,
           "local re-solves after it that raise transversality on the faces still crossing below levelset.min_angle (0: none)");
+  Bool("levelset.seams", &c->levelset.seams,
+       "cut seams from the guidance's ±½ singularities and from holes to the boundary; φ, ψ jump by whole levels "
+       "across them (branch points, as in the paper's curvature reference); false: single-valued φ, ψ");
   Number("levelset.working_edge", &c->levelset.working_edge, kNonNegative,
          "edge length of the mesh φ, ψ are solved on, m (0: 0.4 h); a reference finer than 0.7 × this is remeshed");
 

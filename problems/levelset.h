@@ -12,10 +12,12 @@
 // levelset.min_angle (the hinge is a penalty and loses a few percent of faces otherwise).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "geometry/seams.h"
 #include "geometry/surface_model.h"
 #include "problems/config.h"
 #include "problems/guidance.h"
@@ -38,8 +40,23 @@ struct LevelSetMetrics {
   nlohmann::json ToJson() const;
 };
 
+// Seams of the layout (geometry/seams.h): the surface cut open from every guidance
+// singularity of index ±½ that no nearby opposite one cancels to the boundary, and from every
+// hole to the outer boundary; across path p, u₊ = sign[p]·u₋ + offset[p] (whole levels).
+struct LevelSetSeams {
+  std::shared_ptr<const SeamCut> cut;
+  std::vector<int> sign;                    // per path, shared by φ and ψ
+  std::vector<double> phi_offset, psi_offset;  // per path, integers
+  std::vector<int> tips;                    // original vertices where a seam ends inside (branch points)
+  int cancelled_pairs = 0;                  // ±½ singularity pairs closer than the cancel distance (no seam)
+  int light_paths = 0;                      // routes with too little weighted length to be worth a seam
+  nlohmann::json ToJson() const;
+};
+
 struct LevelSetSolution {
-  std::vector<double> phi, psi;  // per vertex; level lines at multiples of h
+  std::vector<double> phi, psi;  // per vertex (the first copy's value where seams cut); level lines at integers
+  LevelSetSeams seams;           // seams.cut null: φ, ψ single-valued
+  std::vector<double> phi_cut, psi_cut;  // with seams: per vertex of seams.cut->cut()
   LevelSetMetrics initial;       // of the Poisson initial guess
   LevelSetMetrics metrics;       // of the result
   nlohmann::json solver;         // Ceres summaries of the solves

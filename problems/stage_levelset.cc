@@ -10,6 +10,7 @@
 #include "geometry/closest_point.h"
 #include "geometry/differential_operators.h"
 #include "geometry/field_writers.h"
+#include "geometry/line_field_singularities.h"
 #include "geometry/principal_directions.h"
 #include "geometry/remesh.h"
 #include "problems/figures.h"
@@ -17,8 +18,10 @@
 #include "problems/panel_area.h"
 #include "problems/residuals/alignment_residual.h"
 #include "problems/residuals/conjugacy_residual.h"
+#include "problems/residuals/seam_smoothness_residual.h"
 #include "problems/residuals/smoothness_residual.h"
 #include "problems/residuals/spacing_residual.h"
+#include "problems/residuals/transition_residual.h"
 #include "problems/residuals/transversality_residual.h"
 #include "problems/stages.h"
 #include "problems/surface_fields.h"
@@ -131,18 +134,35 @@ std::vector<Eigen::Vector3d> OrientedCrossField(const SurfaceModel& s, const Gui
   return u;
 }
 
-// argmin_u Σ_f ω_f A_f |∇u_f − target_f|², one vertex per connected component held at 0.
+// Seams: how stiff the transitions u₊ = s·u₋ + a are against the other terms (λ of
+// problems/residuals/transition_residual.h; a violation of 1/λ levels costs about as much as
+// one level of gradient error over the vertex's area). The result is then made exact.
+constexpr double kTransitionStiffness = 1e3;
+
+// argmin_u Σ_f ω_f A_f |∇u_f − target_f|² + Σ_seam pairs λ A_v / h² (u₊ − s·u₋ − a_p)².
+// Without seams one vertex per connected component is held at 0; with seams too, unless a
+// seam of sign −1 already fixes the constant (offsets given). seams/family: the seams and
+// which offsets (0 φ, 1 ψ) apply; free_offsets: the a_p are unknowns too, returned in the
+// seams' offsets (not rounded).
 Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target,
-                  const std::vector<double>& omega, std::vector<double>* u) {
+                  const std::vector<double>& omega, std::vector<double>* u, LevelSetSeams* seams = nullptr,
+                  int family = 0, bool free_offsets = false, double h = 1.0) {
   std::vector<int> component;
   const int components = ConnectedComponents(s, &component);
-  std::vector<int> unknown(s.num_vertices(), -1);
   std::vector<char> anchored(components, 0);
+  const bool has_seams = seams != nullptr && seams->cut != nullptr;
+  std::vector<double>* offsets = has_seams ? (family == 0 ? &seams->phi_offset : &seams->psi_offset) : nullptr;
+  if (has_seams && !free_offsets)  // a seam of sign −1 fixes the constant of its component
+    for (const auto& pair : seams->cut->copy_pairs())
+      if (seams->sign[pair.path] < 0) anchored[component[pair.minus]] = 1;
+  std::vector<int> unknown(s.num_vertices(), -1);
   int n = 0;
   for (int v = 0; v < s.num_vertices(); ++v) {
     if (!anchored[component[v]]) anchored[component[v]] = 1;
     else unknown[v] = n++;
   }
+  const int first_offset = n;
+  if (has_seams && free_offsets) n += seams->cut->num_paths();
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
   for (int f = 0; f < s.num_faces(); ++f) {
@@ -156,6 +176,26 @@ Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std:
           triplets.emplace_back(unknown[ids[p]], unknown[ids[q]], a * geo.G[f].col(p).dot(geo.G[f].col(q)));
     }
   }
+  if (has_seams) {
+    for (const auto& pair : seams->cut->copy_pairs()) {
+      const double sign = seams->sign[pair.path];
+      if (pair.minus == pair.plus && sign > 0) continue;  // the tip of a translation seam: no condition
+      // r = Σ coef·x − constant
+      std::vector<std::pair<int, double>> coef;
+      if (pair.minus == pair.plus) coef.push_back({unknown[pair.minus], 1.0 - sign});
+      else coef.push_back({unknown[pair.plus], 1.0}), coef.push_back({unknown[pair.minus], -sign});
+      double constant = 0.0;
+      if (free_offsets) coef.push_back({first_offset + pair.path, -1.0});
+      else constant = (*offsets)[pair.path];
+      const double weight = kTransitionStiffness * s.vertex_area(pair.minus) / (h * h);
+      for (const auto& [i, ci] : coef) {
+        if (i < 0) continue;
+        rhs[i] += weight * constant * ci;
+        for (const auto& [j, cj] : coef)
+          if (j >= 0) triplets.emplace_back(i, j, weight * ci * cj);
+      }
+    }
+  }
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(triplets.begin(), triplets.end());
   CholmodSolver solver;
@@ -165,7 +205,40 @@ Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std:
   u->assign(s.num_vertices(), 0.0);
   for (int v = 0; v < s.num_vertices(); ++v)
     if (unknown[v] >= 0) (*u)[v] = x[unknown[v]];
+  if (has_seams && free_offsets)
+    for (int p = 0; p < seams->cut->num_paths(); ++p) (*offsets)[p] = x[first_offset + p];
   return Status::Ok();
+}
+
+// With seams: PoissonFit with free offsets, the offsets rounded to whole levels, then again
+// with them fixed (QuadCover's rounding, in one step: the seams are few and far apart).
+Status SeamedPoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target,
+                        const std::vector<double>& omega, double h, int family, LevelSetSeams* seams,
+                        std::vector<double>* u) {
+  PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, omega, u, seams, family, true, h));
+  for (double& a : family == 0 ? seams->phi_offset : seams->psi_offset) a = std::round(a);
+  return PoissonFit(s, geo, target, omega, u, seams, family, false, h);
+}
+
+// The seams' signs: the oriented field n × d of OrientedCrossField, compared across each seam
+// edge (the cut surface is a disc with every uncancelled singularity on its boundary, so the
+// orientation is consistent within it); the majority of a path's edges decides.
+std::vector<int> SeamSigns(const SeamCut& cut, const std::vector<Eigen::Vector3d>& oriented) {
+  std::vector<double> vote(cut.num_paths(), 0.0);
+  for (const auto& e : cut.seam_edges()) vote[e.path] += oriented[e.minus_face].dot(oriented[e.plus_face]);
+  std::vector<int> sign(cut.num_paths());
+  for (int p = 0; p < cut.num_paths(); ++p) sign[p] = vote[p] >= 0.0 ? 1 : -1;
+  return sign;
+}
+
+// Makes the transitions exact: every plus copy (and every tip of a sign −1 seam) takes the
+// value its minus copy implies.
+void ProjectTransitions(const LevelSetSeams& seams, const std::vector<double>& offsets, std::vector<double>* u) {
+  for (const auto& pair : seams.cut->copy_pairs()) {
+    const double sign = seams.sign[pair.path], a = offsets[pair.path];
+    if (pair.minus != pair.plus) (*u)[pair.plus] = sign * (*u)[pair.minus] + a;
+    else if (sign < 0) (*u)[pair.minus] = a / 2.0;
+  }
 }
 
 // Quadratic forms (#V by #V) of the φ energies without the spacing term: alignment
@@ -449,13 +522,49 @@ int RaiseCrossings(const SurfaceModel& s, const LevelSetGeometry& geo, const std
   return below;
 }
 
+// A seam edge as the seam smoothness term sees it (cut vertex ids): i, j, k in the minus face
+// f, i, j, l in the plus face g (i, j the same original vertices).
+struct SeamEdgeTerm {
+  int path;
+  int i_minus, j_minus, k, i_plus, j_plus, l;
+  Eigen::Matrix3d Gf, Gg;
+  double area, distance;
+};
+
+std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeometry& geo, const SeamCut& cut) {
+  std::vector<SeamEdgeTerm> terms;
+  for (const auto& e : cut.seam_edges()) {
+    const auto ids_f = s.face_vertices(e.minus_face), ids_g = s.face_vertices(e.plus_face);
+    const TriMesh& m = s.mesh();
+    const auto h = m.halfedge_handle(EdgeHandle(e.cut_edge_minus), 0);
+    const int a = cut.original_vertex(m.from_vertex_handle(h).idx()), b = cut.original_vertex(m.to_vertex_handle(h).idx());
+    SeamEdgeTerm t;
+    t.path = e.path;
+    t.i_minus = t.j_minus = t.k = t.i_plus = t.j_plus = t.l = -1;
+    for (int c = 0; c < 3; ++c) {
+      const int of = cut.original_vertex(ids_f[c]), og = cut.original_vertex(ids_g[c]);
+      (of == a ? t.i_minus : of == b ? t.j_minus : t.k) = ids_f[c];
+      (og == a ? t.i_plus : og == b ? t.j_plus : t.l) = ids_g[c];
+    }
+    t.Gf = OrderedBasis(geo, s, e.minus_face, {t.i_minus, t.j_minus, t.k});
+    t.Gg = OrderedBasis(geo, s, e.plus_face, {t.i_plus, t.j_plus, t.l});
+    t.area = (s.face_area(e.minus_face) + s.face_area(e.plus_face)) / 3.0;
+    t.distance = (geo.centroid[e.minus_face] - geo.centroid[e.plus_face]).norm();
+    // At a branch point (one copy on both sides) the gradient is singular: no term.
+    if (t.i_minus != t.i_plus && t.j_minus != t.j_plus) terms.push_back(t);
+  }
+  return terms;
+}
+
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
+// seams: null, or the seams s is the cut surface of (their signs and offsets are set here).
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
-                   LevelSetSolution* solution) {
+                   LevelSetSeams* seams, LevelSetSolution* solution) {
   const LevelSetGeometry geo = Precompute(s);
   const std::vector<InteriorEdge> edges = InteriorEdges(s, geo);
   const auto& w = options.weights;
   const double min_angle = options.min_angle / kDegrees;
+  const bool seamed = seams != nullptr && seams->cut != nullptr;
 
   // Initial guess: φ from the oriented cross field (weak pull where the guidance is weak),
   // then ψ from the conjugate direction of φ's level lines.
@@ -463,14 +572,49 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   for (auto& t : target) t /= h;
   std::vector<double> omega(s.num_faces());
   for (int f = 0; f < s.num_faces(); ++f) omega[f] = std::max(g.weight[f], 0.05);
-  PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, omega, &solution->phi));
-  PQ_RETURN_IF_ERROR(SmallestEigenvector(s, geo, g, edges, h, w, &solution->phi));
-  PQ_RETURN_IF_ERROR(PoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
-                                std::vector<double>(s.num_faces(), 1.0), &solution->psi));
+  std::vector<SeamEdgeTerm> seam_terms;
+  if (seamed) {
+    // On the cut surface the oriented field has no hidden branch cut left: the Poisson fit
+    // with the seams' transitions is the guess (the eigenvector below is for a single-valued φ).
+    seams->sign = SeamSigns(*seams->cut, target);
+    seams->phi_offset.assign(seams->cut->num_paths(), 0.0);
+    seams->psi_offset.assign(seams->cut->num_paths(), 0.0);
+    seam_terms = SeamEdgeTerms(s, geo, *seams->cut);
+    PQ_RETURN_IF_ERROR(SeamedPoissonFit(s, geo, target, omega, h, 0, seams, &solution->phi));
+    PQ_RETURN_IF_ERROR(SeamedPoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
+                                        std::vector<double>(s.num_faces(), 1.0), h, 1, seams, &solution->psi));
+  } else {
+    PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, omega, &solution->phi));
+    PQ_RETURN_IF_ERROR(SmallestEigenvector(s, geo, g, edges, h, w, &solution->phi));
+    PQ_RETURN_IF_ERROR(PoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
+                                  std::vector<double>(s.num_faces(), 1.0), &solution->psi));
+  }
   solution->initial = Measure(s, geo, g, solution->phi, solution->psi, options.min_angle);
 
   std::vector<double>& phi = solution->phi;
   std::vector<double>& psi = solution->psi;
+  // Across the seams: the transitions, and smoothness with the plus side's values mapped back.
+  auto add_seam_terms = [&](ceres::Problem* problem, std::vector<double>* u, const std::vector<double>& offsets,
+                            const std::vector<char>* live) {
+    for (const auto& pair : seams->cut->copy_pairs()) {
+      const double sign = seams->sign[pair.path];
+      if (!Live(live, {pair.minus, pair.plus})) continue;
+      const double area = s.vertex_area(pair.minus);
+      if (pair.minus != pair.plus)
+        problem->AddResidualBlock(TransitionResidual::Create(sign, offsets[pair.path], area, kTransitionStiffness),
+                                  nullptr, &(*u)[pair.minus], &(*u)[pair.plus]);
+      else if (sign < 0)
+        problem->AddResidualBlock(TransitionResidual::CreateTip(sign, offsets[pair.path], area, kTransitionStiffness),
+                                  nullptr, &(*u)[pair.minus]);
+    }
+    if (w.smoothness <= 0.0) return;
+    for (const auto& t : seam_terms) {
+      if (!Live(live, {t.i_minus, t.j_minus, t.k, t.i_plus, t.j_plus, t.l})) continue;
+      problem->AddResidualBlock(
+          SeamSmoothnessResidual::Create(t.Gf, t.Gg, seams->sign[t.path], t.area, t.distance, h), Weight(w.smoothness),
+          &(*u)[t.i_minus], &(*u)[t.j_minus], &(*u)[t.k], &(*u)[t.i_plus], &(*u)[t.j_plus], &(*u)[t.l]);
+    }
+  };
   // φ's terms: alignment + spacing + smoothness.
   auto add_phi_terms = [&](ceres::Problem* problem, const std::vector<char>* live = nullptr) {
     for (int f = 0; f < s.num_faces(); ++f) {
@@ -482,6 +626,7 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     }
     AddSpacing(s, geo, h, w.spacing, &phi, problem, live);
     AddSmoothness(edges, h, w.smoothness, &phi, problem, live);
+    if (seamed) add_seam_terms(problem, &phi, seams->phi_offset, live);
   };
   std::vector<double> boost(s.num_faces(), 1.0);  // per-face transversality weight factor (RaiseCrossings)
   // ψ's terms: conjugacy + transversality (both also involve φ) + spacing + smoothness.
@@ -502,6 +647,7 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     }
     AddSpacing(s, geo, h, w.spacing, &psi, problem, live);
     AddSmoothness(edges, h, w.smoothness, &psi, problem, live);
+    if (seamed) add_seam_terms(problem, &psi, seams->psi_offset, live);
   };
 
   // 1. φ alone.
@@ -539,6 +685,10 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     PQ_RETURN_IF_ERROR(Solve(name, kCrossingIterations, &local, &solution->solver[name]));
   }
 
+  if (seamed) {
+    ProjectTransitions(*seams, seams->phi_offset, &phi);
+    ProjectTransitions(*seams, seams->psi_offset, &psi);
+  }
   solution->metrics = Measure(s, geo, g, phi, psi, options.min_angle);
   return Status::Ok();
 }
@@ -582,8 +732,86 @@ constexpr double kWorkingCornerAngle = 30.0;  // corners the working mesh keeps 
 constexpr double kReuseReference = 0.7;       // solve on the reference if its mean edge ≥ this × working edge
 constexpr double kDefaultWorkingEdge = 0.4;   // × h: CGAL lands near 12k triangles on the Great Court at h = 3 m
 constexpr int kRemeshIterations = 3;
+constexpr double kCancelDistance = 2.0;  // × h: ±½ singularities of opposite index closer than this get no seam
+constexpr double kMinSeamWeight = 1.0;   // × h: a seam whose path has less weighted length is not cut
+
+// The tips of the seams: the guidance's singularities of index ±½, less the pairs of
+// opposite index closer than kCancelDistance·h, closest first (a wrinkle of the field that
+// a single-valued φ rides out; a seam there would only add two branch points).
+std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double h, int* cancelled) {
+  std::vector<LineFieldSingularity> half;
+  for (const auto& x : FindLineFieldSingularities(s, g.direction))
+    if (std::abs(std::abs(x.index) - 0.5) < 1e-9) half.push_back(x);
+  std::vector<std::tuple<double, int, int>> candidates;
+  for (size_t i = 0; i < half.size(); ++i)
+    for (size_t j = i + 1; j < half.size(); ++j) {
+      const double d = (half[i].position - half[j].position).norm();
+      if (half[i].index * half[j].index < 0 && d < kCancelDistance * h) candidates.emplace_back(d, i, j);
+    }
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<char> gone(half.size(), 0);
+  *cancelled = 0;
+  for (const auto& [d, i, j] : candidates) {
+    if (gone[i] || gone[j]) continue;
+    gone[i] = gone[j] = 1;
+    ++*cancelled;
+  }
+  std::vector<int> tips;
+  for (size_t i = 0; i < half.size(); ++i)
+    if (!gone[i]) tips.push_back(half[i].vertex);
+  return tips;
+}
+
+// SolveOnMesh on the surface cut open along seams (geometry/seams.h); φ, ψ per original
+// vertex are the first copies' values, per cut vertex in phi_cut / psi_cut. A seam is cut
+// only where a single-valued φ would have to misalign a weighted length of kMinSeamWeight·h
+// or more (PathWeight of its route): on the Great Court the curvature field's four umbilics
+// and the ring qualify (3.3–16 m at h = 3 m); the strain field's singularities sit in the
+// weak bands along the edges, where a hidden cut costs at most 1.6 m, and get none.
+Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
+                      LevelSetSolution* solution) {
+  LevelSetSeams& seams = solution->seams;
+  seams = LevelSetSeams();
+  const std::vector<int> tips = SeamTips(s, g, h, &seams.cancelled_pairs);
+  std::vector<std::vector<int>> paths;
+  for (auto& path : RouteSeams(s, g.weight, tips)) {
+    if (PathWeight(s, g.weight, path) >= kMinSeamWeight * h) paths.push_back(std::move(path));
+    else ++seams.light_paths;
+  }
+  if (paths.empty()) return SolveOnMesh(s, g, options, h, nullptr, solution);
+  std::unique_ptr<SeamCut> cut;
+  PQ_RETURN_IF_ERROR(SeamCut::Build(s, paths, &cut).WithContext("levelset seams"));
+  for (const auto& path : paths)
+    if (!s.is_boundary(path.front())) seams.tips.push_back(path.front());
+  seams.cut = std::move(cut);
+  LOG(INFO) << "levelset: " << paths.size() << " seams: " << seams.tips.size() << " from guidance singularities, "
+            << paths.size() - seams.tips.size() << " joining holes to the outer boundary (" << seams.cancelled_pairs
+            << " close ± singularity pairs and " << seams.light_paths << " routes through weak guidance left uncut)";
+  PQ_RETURN_IF_ERROR(SolveOnMesh(seams.cut->cut(), g, options, h, &seams, solution));
+  solution->phi_cut = std::move(solution->phi);
+  solution->psi_cut = std::move(solution->psi);
+  solution->phi = seams.cut->ToOriginal(solution->phi_cut);
+  solution->psi = seams.cut->ToOriginal(solution->psi_cut);
+  return Status::Ok();
+}
 
 }  // namespace
+
+nlohmann::json LevelSetSeams::ToJson() const {
+  nlohmann::json paths = nlohmann::json::array();
+  if (cut)
+    for (int p = 0; p < cut->num_paths(); ++p)
+      paths.push_back({{"vertices", cut->path(p).size()},
+                       {"sign", sign[p]},
+                       {"phi_offset", phi_offset[p]},
+                       {"psi_offset", psi_offset[p]},
+                       {"branch_point", std::find(tips.begin(), tips.end(), cut->path(p).front()) != tips.end()}});
+  return {{"count", paths.size()},
+          {"branch_points", tips.size()},
+          {"cancelled_singularity_pairs", cancelled_pairs},
+          {"uncut_weak_routes", light_paths},
+          {"paths", paths}};
+}
 
 Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
                       LevelSetSolution* solution) {
@@ -591,7 +819,8 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   const double reference_edge = MeanEdgeLength(s.mesh());
   if (reference_edge >= kReuseReference * working_edge) {
     solution->working_faces = s.num_faces();
-    return SolveOnMesh(s, g, options, h, solution);
+    if (options.seams) return SolveWithSeams(s, g, options, h, solution);
+    return SolveOnMesh(s, g, options, h, nullptr, solution);
   }
   // A reference much finer than the layout needs: solve on a remeshed copy whose edges are
   // working_edge long (the level lines are h apart; 0.4 h resolves them), then interpolate
@@ -603,7 +832,10 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference << " × working edge "
             << working_edge << " m: solving on a remeshed copy with " << working.num_faces() << " triangles";
   LevelSetSolution coarse;
-  PQ_RETURN_IF_ERROR(SolveOnMesh(working, TransferGuidance(s, g, working), options, h, &coarse));
+  // Decision: no seams on a working mesh (φ, ψ would have to be interpolated per chart); the
+  // layout is then single-valued, as with levelset.seams: false.
+  if (options.seams) LOG(INFO) << "levelset: no seams on a remeshed working mesh; φ, ψ single-valued";
+  PQ_RETURN_IF_ERROR(SolveOnMesh(working, TransferGuidance(s, g, working), options, h, nullptr, &coarse));
   const ClosestPointQuery query(working);
   solution->phi.assign(s.num_vertices(), 0.0);
   solution->psi.assign(s.num_vertices(), 0.0);
