@@ -18,13 +18,12 @@
 #include "problems/panel_area.h"
 #include "problems/residuals/alignment_residual.h"
 #include "problems/residuals/conjugacy_residual.h"
-#include "problems/residuals/seam_smoothness_residual.h"
 #include "problems/residuals/smoothness_residual.h"
 #include "problems/residuals/spacing_residual.h"
-#include "problems/residuals/transition_residual.h"
 #include "problems/residuals/transversality_residual.h"
 #include "problems/stages.h"
 #include "problems/surface_fields.h"
+#include "solver/affine_mapped_cost.h"
 #include "solver/ceres_options.h"
 #include "solver/cholmod_solver.h"
 
@@ -134,9 +133,10 @@ std::vector<Eigen::Vector3d> OrientedCrossField(const SurfaceModel& s, const Gui
   return u;
 }
 
-// Seams: how stiff the transitions u₊ = s·u₋ + a are against the other terms (λ of
-// problems/residuals/transition_residual.h; a violation of 1/λ levels costs about as much as
-// one level of gradient error over the vertex's area). The result is then made exact.
+// Seams in the linear initial guess: how stiff the transitions u₊ = s·u₋ + a are against the
+// gradient fit (a violation of 1/λ levels costs about as much as one level of gradient error
+// over the vertex's area); the result is then made exact (ProjectTransitions). The Ceres
+// solves need no such weight: there the transitions are exact by construction (Chart).
 constexpr double kTransitionStiffness = 1e3;
 
 // argmin_u Σ_f ω_f A_f |∇u_f − target_f|² + Σ_seam pairs λ A_v / h² (u₊ − s·u₋ − a_p)².
@@ -376,24 +376,53 @@ bool Live(const std::vector<char>* live, std::initializer_list<int> ids) {
   return false;
 }
 
-void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, std::vector<double>* u,
+// Where the value of each vertex of the solve mesh lives for Ceres: its own parameter, or,
+// for the plus copy of a seam vertex, the minus copy's parameter through u₊ = s·u₋ + a
+// (solver/affine_mapped_cost.h), so the transitions hold exactly.
+struct Scalar {
+  int vertex;
+  double scale = 1.0, offset = 0.0;
+};
+struct Chart {
+  std::vector<double>* values;
+  std::vector<Scalar> map;  // per vertex; empty: every vertex is its own parameter
+  Scalar At(int v) const { return map.empty() ? Scalar{v} : map[v]; }
+};
+
+// Adds `cost` over the given scalars (chart, vertex), through their maps.
+void AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss,
+               std::initializer_list<std::pair<const Chart*, Scalar>> args) {
+  std::vector<double*> blocks;
+  std::vector<double> scale, offset;
+  bool identity = true;
+  for (const auto& [chart, x] : args) {
+    blocks.push_back(&(*chart->values)[x.vertex]);
+    scale.push_back(x.scale);
+    offset.push_back(x.offset);
+    identity = identity && x.scale == 1.0 && x.offset == 0.0;
+  }
+  if (!identity) cost = new AffineMappedCost(cost, std::move(scale), std::move(offset));
+  problem->AddResidualBlock(cost, loss, blocks);
+}
+
+void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, const Chart& u,
                    ceres::Problem* problem, const std::vector<char>* live = nullptr) {
   if (weight <= 0.0) return;
   for (const auto& e : edges) {
     if (!Live(live, {e.i, e.j, e.k, e.l})) continue;
-    problem->AddResidualBlock(SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h), Weight(weight),
-                              &(*u)[e.i], &(*u)[e.j], &(*u)[e.k], &(*u)[e.l]);
+    AddMapped(problem, SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h), Weight(weight),
+              {{&u, u.At(e.i)}, {&u, u.At(e.j)}, {&u, u.At(e.k)}, {&u, u.At(e.l)}});
   }
 }
 
-void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, std::vector<double>* u,
+void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u,
                 ceres::Problem* problem, const std::vector<char>* live = nullptr) {
   if (weight <= 0.0) return;
   for (int f = 0; f < s.num_faces(); ++f) {
     const auto ids = s.face_vertices(f);
     if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
-    problem->AddResidualBlock(SpacingResidual::Create(geo.G[f], s.face_area(f), h), Weight(weight), &(*u)[ids[0]],
-                              &(*u)[ids[1]], &(*u)[ids[2]]);
+    AddMapped(problem, SpacingResidual::Create(geo.G[f], s.face_area(f), h), Weight(weight),
+              {{&u, u.At(ids[0])}, {&u, u.At(ids[1])}, {&u, u.At(ids[2])}});
   }
 }
 
@@ -453,7 +482,10 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
     if (std::isfinite(c)) conj += s.face_area(f) * c * c;
     const double crossing = std::acos(std::min(1.0, std::abs(t1.dot(t2)))) * kDegrees;
     if (std::isfinite(crossing)) m.min_crossing_angle_deg = std::min(m.min_crossing_angle_deg, crossing);
-    if (!(crossing >= min_angle_deg)) ++m.faces_below_min_angle, m.area_below_min_angle += s.face_area(f);
+    if (!(crossing >= min_angle_deg)) {
+      ++m.faces_below_min_angle, m.area_below_min_angle += s.face_area(f);
+      VLOG(2) << "levelset: face " << f << " at " << geo.centroid[f].transpose() << " crosses at " << crossing << "°";
+    }
     if (!(n.dot(gphi[f].cross(gpsi[f])) > 0.0)) ++m.foldovers;
   }
   m.alignment_rms_deg = align_w > 0 ? std::sqrt(align / align_w) : 0.0;
@@ -550,8 +582,7 @@ std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeo
     t.Gg = OrderedBasis(geo, s, e.plus_face, {t.i_plus, t.j_plus, t.l});
     t.area = (s.face_area(e.minus_face) + s.face_area(e.plus_face)) / 3.0;
     t.distance = (geo.centroid[e.minus_face] - geo.centroid[e.plus_face]).norm();
-    // At a branch point (one copy on both sides) the gradient is singular: no term.
-    if (t.i_minus != t.i_plus && t.j_minus != t.j_plus) terms.push_back(t);
+    terms.push_back(t);
   }
   return terms;
 }
@@ -589,30 +620,47 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     PQ_RETURN_IF_ERROR(PoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
                                   std::vector<double>(s.num_faces(), 1.0), &solution->psi));
   }
-  solution->initial = Measure(s, geo, g, solution->phi, solution->psi, options.min_angle);
 
   std::vector<double>& phi = solution->phi;
   std::vector<double>& psi = solution->psi;
-  // Across the seams: the transitions, and smoothness with the plus side's values mapped back.
-  auto add_seam_terms = [&](ceres::Problem* problem, std::vector<double>* u, const std::vector<double>& offsets,
-                            const std::vector<char>* live) {
+  Chart phi_chart{&phi, {}}, psi_chart{&psi, {}};
+  std::vector<int> fixed_tips;  // branch points of sign −1 seams: u = a/2 on both sides
+  if (seamed) {
+    phi_chart.map = psi_chart.map = std::vector<Scalar>(s.num_vertices());
+    for (int v = 0; v < s.num_vertices(); ++v) phi_chart.map[v] = psi_chart.map[v] = {v};
     for (const auto& pair : seams->cut->copy_pairs()) {
       const double sign = seams->sign[pair.path];
-      if (!Live(live, {pair.minus, pair.plus})) continue;
-      const double area = s.vertex_area(pair.minus);
-      if (pair.minus != pair.plus)
-        problem->AddResidualBlock(TransitionResidual::Create(sign, offsets[pair.path], area, kTransitionStiffness),
-                                  nullptr, &(*u)[pair.minus], &(*u)[pair.plus]);
-      else if (sign < 0)
-        problem->AddResidualBlock(TransitionResidual::CreateTip(sign, offsets[pair.path], area, kTransitionStiffness),
-                                  nullptr, &(*u)[pair.minus]);
+      if (pair.minus == pair.plus) {
+        if (sign < 0) fixed_tips.push_back(pair.minus);
+        continue;
+      }
+      phi_chart.map[pair.plus] = {pair.minus, sign, seams->phi_offset[pair.path]};
+      psi_chart.map[pair.plus] = {pair.minus, sign, seams->psi_offset[pair.path]};
     }
+  }
+  const auto project = [&] {
+    if (!seamed) return;
+    ProjectTransitions(*seams, seams->phi_offset, &phi);
+    ProjectTransitions(*seams, seams->psi_offset, &psi);
+  };
+  const auto hold_tips = [&](ceres::Problem* problem) {
+    for (const int v : fixed_tips)
+      for (double* x : {&phi[v], &psi[v]})
+        if (problem->HasParameterBlock(x)) problem->SetParameterBlockConstant(x);
+  };
+  // Smoothness across the seams: f on the minus side, g on the plus side; with the plus face's
+  // third vertex l read as s·(u_l − a) (its plus-chart value mapped back), the ordinary
+  // smoothness term measures ∇u_f − s·∇u_g, the jump in one chart.
+  const auto add_seam_smoothness = [&](ceres::Problem* problem, const Chart& u, const std::vector<double>& offsets,
+                                       const std::vector<char>* live) {
     if (w.smoothness <= 0.0) return;
     for (const auto& t : seam_terms) {
-      if (!Live(live, {t.i_minus, t.j_minus, t.k, t.i_plus, t.j_plus, t.l})) continue;
-      problem->AddResidualBlock(
-          SeamSmoothnessResidual::Create(t.Gf, t.Gg, seams->sign[t.path], t.area, t.distance, h), Weight(w.smoothness),
-          &(*u)[t.i_minus], &(*u)[t.j_minus], &(*u)[t.k], &(*u)[t.i_plus], &(*u)[t.j_plus], &(*u)[t.l]);
+      if (!Live(live, {t.i_minus, t.j_minus, t.k, t.l})) continue;
+      const double sign = seams->sign[t.path];
+      Scalar l = u.At(t.l);
+      l = {l.vertex, sign * l.scale, sign * (l.offset - offsets[t.path])};
+      AddMapped(problem, SmoothnessResidual::Create(t.Gf, t.Gg, t.area, t.distance, h), Weight(w.smoothness),
+                {{&u, u.At(t.i_minus)}, {&u, u.At(t.j_minus)}, {&u, u.At(t.k)}, {&u, l}});
     }
   };
   // φ's terms: alignment + spacing + smoothness.
@@ -621,12 +669,14 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
       const auto ids = s.face_vertices(f);
       if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
       if (w.alignment > 0.0 && g.weight[f] > 0.0)
-        problem->AddResidualBlock(AlignmentResidual::Create(geo.G[f], g.direction[f], g.weight[f], s.face_area(f), h),
-                                  Weight(w.alignment), &phi[ids[0]], &phi[ids[1]], &phi[ids[2]]);
+        AddMapped(problem, AlignmentResidual::Create(geo.G[f], g.direction[f], g.weight[f], s.face_area(f), h),
+                  Weight(w.alignment),
+                  {{&phi_chart, phi_chart.At(ids[0])}, {&phi_chart, phi_chart.At(ids[1])},
+                   {&phi_chart, phi_chart.At(ids[2])}});
     }
-    AddSpacing(s, geo, h, w.spacing, &phi, problem, live);
-    AddSmoothness(edges, h, w.smoothness, &phi, problem, live);
-    if (seamed) add_seam_terms(problem, &phi, seams->phi_offset, live);
+    AddSpacing(s, geo, h, w.spacing, phi_chart, problem, live);
+    AddSmoothness(edges, h, w.smoothness, phi_chart, problem, live);
+    if (seamed) add_seam_smoothness(problem, phi_chart, seams->phi_offset, live);
   };
   std::vector<double> boost(s.num_faces(), 1.0);  // per-face transversality weight factor (RaiseCrossings)
   // ψ's terms: conjugacy + transversality (both also involve φ) + spacing + smoothness.
@@ -635,44 +685,57 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     for (int f = 0; f < s.num_faces(); ++f) {
       const auto ids = s.face_vertices(f);
       if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
-      const std::vector<double*> blocks{&phi[ids[0]], &phi[ids[1]], &phi[ids[2]],
-                                        &psi[ids[0]], &psi[ids[1]], &psi[ids[2]]};
+      const std::initializer_list<std::pair<const Chart*, Scalar>> blocks{
+          {&phi_chart, phi_chart.At(ids[0])}, {&phi_chart, phi_chart.At(ids[1])}, {&phi_chart, phi_chart.At(ids[2])},
+          {&psi_chart, psi_chart.At(ids[0])}, {&psi_chart, psi_chart.At(ids[1])}, {&psi_chart, psi_chart.At(ids[2])}};
       const Eigen::Vector3d& n = s.face_normal(f);
       if (w.conjugacy > 0.0)
-        problem->AddResidualBlock(ConjugacyResidual::Create(geo.G[f], n, geo.S[f], geo.flat_curvature, s.face_area(f)),
-                                  Weight(w.conjugacy), blocks);
+        AddMapped(problem, ConjugacyResidual::Create(geo.G[f], n, geo.S[f], geo.flat_curvature, s.face_area(f)),
+                  Weight(w.conjugacy), blocks);
       if (w.transversality > 0.0)
-        problem->AddResidualBlock(TransversalityResidual::Create(geo.G[f], n, hinge_angle, s.face_area(f), h),
-                                  Weight(w.transversality * boost[f]), blocks);
+        AddMapped(problem, TransversalityResidual::Create(geo.G[f], n, hinge_angle, s.face_area(f), h),
+                  Weight(w.transversality * boost[f]), blocks);
     }
-    AddSpacing(s, geo, h, w.spacing, &psi, problem, live);
-    AddSmoothness(edges, h, w.smoothness, &psi, problem, live);
-    if (seamed) add_seam_terms(problem, &psi, seams->psi_offset, live);
+    AddSpacing(s, geo, h, w.spacing, psi_chart, problem, live);
+    AddSmoothness(edges, h, w.smoothness, psi_chart, problem, live);
+    if (seamed) add_seam_smoothness(problem, psi_chart, seams->psi_offset, live);
   };
 
+  project();
+  solution->initial = Measure(s, geo, g, phi, psi, options.min_angle);
   // 1. φ alone.
   ceres::Problem phi_problem;
   add_phi_terms(&phi_problem);
+  hold_tips(&phi_problem);
   if (phi_problem.NumResidualBlocks() > 0)
     PQ_RETURN_IF_ERROR(Solve("phi", options.max_iterations, &phi_problem, &solution->solver["phi"]));
+  project();
   // 2. ψ with φ held.
   ceres::Problem psi_problem;
   add_psi_terms(&psi_problem);
   for (double& value : phi)
     if (psi_problem.HasParameterBlock(&value)) psi_problem.SetParameterBlockConstant(&value);
+  hold_tips(&psi_problem);
   if (psi_problem.NumResidualBlocks() > 0)
     PQ_RETURN_IF_ERROR(Solve("psi", options.max_iterations, &psi_problem, &solution->solver["psi"]));
+  project();
   // 3. Both together, so that φ can give way where ψ cannot cross it steeply enough.
   if (options.joint_iterations > 0) {
     ceres::Problem joint_problem;
     add_phi_terms(&joint_problem);
     add_psi_terms(&joint_problem);
+    hold_tips(&joint_problem);
     PQ_RETURN_IF_ERROR(Solve("joint", options.joint_iterations, &joint_problem, &solution->solver["joint"]));
+    project();
   }
   // 4. Local re-solves for the crossing angle (see RaiseCrossings).
   for (int round = 0; round < options.crossing_rounds; ++round) {
     std::vector<char> live_phi, live_psi;
     if (RaiseCrossings(s, geo, phi, psi, min_angle, &boost, &live_phi, &live_psi) == 0) break;
+    for (int v = 0; v < s.num_vertices(); ++v) {  // a live plus copy frees its parameter
+      if (live_phi[v]) live_phi[phi_chart.At(v).vertex] = 1;
+      if (live_psi[v]) live_psi[psi_chart.At(v).vertex] = 1;
+    }
     hinge_angle = min_angle + kCrossingMargin / kDegrees;
     ceres::Problem local;
     add_phi_terms(&local, &live_psi);
@@ -681,14 +744,12 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
       if (!live_phi[v] && local.HasParameterBlock(&phi[v])) local.SetParameterBlockConstant(&phi[v]);
       if (!live_psi[v] && local.HasParameterBlock(&psi[v])) local.SetParameterBlockConstant(&psi[v]);
     }
+    hold_tips(&local);
     const std::string name = "crossing_round_" + std::to_string(round + 1);
     PQ_RETURN_IF_ERROR(Solve(name, kCrossingIterations, &local, &solution->solver[name]));
+    project();
   }
 
-  if (seamed) {
-    ProjectTransitions(*seams, seams->phi_offset, &phi);
-    ProjectTransitions(*seams, seams->psi_offset, &psi);
-  }
   solution->metrics = Measure(s, geo, g, phi, psi, options.min_angle);
   return Status::Ok();
 }

@@ -8,11 +8,10 @@
 #include "geometry/differential_operators.h"
 #include "problems/residuals/alignment_residual.h"
 #include "problems/residuals/conjugacy_residual.h"
-#include "problems/residuals/seam_smoothness_residual.h"
 #include "problems/residuals/smoothness_residual.h"
 #include "problems/residuals/spacing_residual.h"
-#include "problems/residuals/transition_residual.h"
 #include "problems/residuals/transversality_residual.h"
+#include "solver/affine_mapped_cost.h"
 #include "tests/gradient_check.h"
 #include "tests/test_meshes.h"
 
@@ -69,16 +68,6 @@ TEST(LevelsetResiduals, GradientCheckAtRandomPoints) {
     ExpectJacobiansMatchFiniteDifferences("SpacingResidual", SpacingResidual::Create(f.G, f.area, h), RandomValues(3));
     ExpectJacobiansMatchFiniteDifferences("SmoothnessResidual", SmoothnessResidual::Create(f.G, g.G, (f.area + g.area) / 3, Uniform(0.3, 1.0), h),
                                           RandomValues(4));
-    const double sign = trial % 2 ? 1.0 : -1.0;
-    ExpectJacobiansMatchFiniteDifferences(
-        "SeamSmoothnessResidual",
-        SeamSmoothnessResidual::Create(f.G, g.G, sign, (f.area + g.area) / 3, Uniform(0.3, 1.0), h), RandomValues(6));
-    ExpectJacobiansMatchFiniteDifferences("TransitionResidual",
-                                          TransitionResidual::Create(sign, std::round(Uniform(-5, 5)), f.area, 1e3),
-                                          RandomValues(2));
-    ExpectJacobiansMatchFiniteDifferences("TransitionResidual (tip)",
-                                          TransitionResidual::CreateTip(sign, std::round(Uniform(-5, 5)), f.area, 1e3),
-                                          RandomValues(1));
     ExpectJacobiansMatchFiniteDifferences(
         "ConjugacyResidual", ConjugacyResidual::Create(f.G, f.n, RandomShapeOperator(f.n), 0.01, f.area), RandomValues(6));
     // Transversality: probe only where the hinge is smooth (|s − sin θ_min| not tiny).
@@ -136,29 +125,41 @@ TEST(LevelsetResiduals, KnownZerosAndValues) {
               0.0, 1e-12);
 }
 
-// Across a seam u₊ = s·u₋ + a: the transition holds exactly (r = 0), is violated by √(λA)
-// per level of mismatch, and a linear u continued through the seam has no gradient jump.
-TEST(LevelsetResiduals, SeamTermsVanishOnTheTransition) {
-  const Face f = RandomFace();
-  const double area = 0.7, stiffness = 1e3;
-  for (const double s : {1.0, -1.0}) {
-    const double a = 7.0, u = 0.3;
-    EXPECT_NEAR(Evaluate<TransitionResidual>(TransitionResidual::Create(s, a, area, stiffness), {u, s * u + a}), 0.0,
-                1e-12);
-    EXPECT_NEAR(Evaluate<TransitionResidual>(TransitionResidual::Create(s, a, area, stiffness), {u, s * u + a + 1.0}),
-                std::sqrt(stiffness * area), 1e-9);
-    // The tip of a seam: one copy, u = s·u + a.
-    if (s < 0)
-      EXPECT_NEAR(Evaluate<TransitionResidual>(TransitionResidual::CreateTip(s, a, area, stiffness), {a / 2}), 0.0,
-                  1e-12);
-    // The plus face sees s·φ + a of the same linear φ: no jump; the wrong sign gives 2|∇φ|·scale.
-    const Eigen::Vector3d phi = ValuesWithGradient(f, RandomTangent(f.n));
-    const std::vector<double> values{phi[0], phi[1], phi[2], s * phi[0] + a, s * phi[1] + a, s * phi[2] + a};
-    EXPECT_NEAR(Evaluate<SeamSmoothnessResidual>(SeamSmoothnessResidual::Create(f.G, f.G, s, area, 0.5, 2.0), values),
-                0.0, 1e-9);
-    EXPECT_NEAR(Evaluate<SeamSmoothnessResidual>(SeamSmoothnessResidual::Create(f.G, f.G, -s, area, 0.5, 2.0), values),
-                2.0 * std::sqrt(area) * 4.0 / 0.5, 1e-9);
+// Across a seam the plus side reads u₊ = s·u₋ + a through AffineMappedCost: residuals are
+// those of the inner functor at the mapped values, Jacobians chained by s (GradientChecker),
+// and a linear φ continued through a seam (s = −1, a = 3) has no smoothness jump.
+TEST(LevelsetResiduals, AffineMappedCostIsTheInnerCostAtMappedValues) {
+  for (int trial = 0; trial < 10; ++trial) {
+    const Face f = RandomFace(), g = RandomFace();
+    const double h = Uniform(0.5, 3.0);
+    std::vector<double> scale(6), offset(6);
+    for (int k = 0; k < 6; ++k) scale[k] = (trial + k) % 2 ? 1.0 : -1.0, offset[k] = std::round(Uniform(-4, 4));
+    const std::vector<double> x = RandomValues(6);
+    std::vector<double> mapped(6);
+    for (int k = 0; k < 6; ++k) mapped[k] = scale[k] * x[k] + offset[k];
+    const Eigen::Matrix3d S = RandomShapeOperator(f.n);
+    const auto conjugacy = [&] { return ConjugacyResidual::Create(f.G, f.n, S, 0.01, f.area); };
+    const double inner = Evaluate<ConjugacyResidual>(conjugacy(), mapped);
+    EXPECT_NEAR(Evaluate<ConjugacyResidual>(new AffineMappedCost(conjugacy(), scale, offset), x), inner, 1e-12);
+    ExpectJacobiansMatchFiniteDifferences(
+        "AffineMappedCost(SmoothnessResidual)",
+        new AffineMappedCost(SmoothnessResidual::Create(f.G, g.G, (f.area + g.area) / 3, 0.5, h),
+                             {scale[0], scale[1], scale[2], scale[3]}, {offset[0], offset[1], offset[2], offset[3]}),
+        RandomValues(4));
   }
+  // One flat face seen from both sides of a seam: f holds φ, g (the same triangle) holds
+  // −φ + 3 at its third vertex; read back through the map s·(u − a) the jump vanishes, and
+  // without the map it does not.
+  const Face f = RandomFace();
+  const Eigen::Vector3d phi = ValuesWithGradient(f, RandomTangent(f.n));
+  const double plus_l = -phi[2] + 3.0;
+  EXPECT_NEAR(Evaluate<SmoothnessResidual>(new AffineMappedCost(SmoothnessResidual::Create(f.G, f.G, f.area, 0.5, 2.0),
+                                                                {1, 1, 1, -1}, {0, 0, 0, 3}),
+                                           {phi[0], phi[1], phi[2], plus_l}),
+              0.0, 1e-9);
+  EXPECT_GT(Evaluate<SmoothnessResidual>(SmoothnessResidual::Create(f.G, f.G, f.area, 0.5, 2.0),
+                                         {phi[0], phi[1], phi[2], plus_l}),
+            0.1);
 }
 
 TEST(LevelsetResiduals, ConjugacyVanishesOnPrincipalDirectionsAndIsScaleFree) {
