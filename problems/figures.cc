@@ -24,6 +24,7 @@ const Stroke kStreamline{Rgb{0x30, 0x30, 0x30}, 1.1, 0.9};  // integral curves
 const Stroke kFaintStreamline{Rgb{0xb0, 0xb0, 0xb0}, 0.9, 0.9};  // background curves
 const Stroke kPhiLine{Rgb{0x00, 0x00, 0x00}, 1.5, 1.0};           // φ = i·h (paper: black)
 const Stroke kPsiLine{Rgb{0x1f, 0x5f, 0xd6}, 1.5, 1.0};           // ψ = j·h (paper: blue)
+const Stroke kSeamLine{Rgb{0xd6, 0x27, 0x28}, 1.2, 0.8};          // seams of a branched layout
 constexpr double kMinLevelSpacingPx = 4.0;  // closer level lines (px of 1000 px): every k-th
 constexpr double kMaxLevelLines = 1000.0;   // per family, whatever the function's range
 
@@ -322,10 +323,11 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
                            const std::vector<double>& psi, double spacing,
                            const std::vector<Eigen::Vector3d>& direction,
                            const std::vector<double>& weight, const std::string& title,
-                           const std::string& path, const FigureOptions& options) {
+                           const std::string& path, const FigureOptions& options, const SeamCut* seams) {
   const int nf = surface.num_faces();
-  PQ_RETURN_IF_ERROR(CheckFinite(phi, surface.num_vertices(), "phi", "vertex").WithContext(path));
-  PQ_RETURN_IF_ERROR(CheckFinite(psi, surface.num_vertices(), "psi", "vertex").WithContext(path));
+  const SurfaceModel& level_surface = seams != nullptr ? seams->cut() : surface;
+  PQ_RETURN_IF_ERROR(CheckFinite(phi, level_surface.num_vertices(), "phi", "vertex").WithContext(path));
+  PQ_RETURN_IF_ERROR(CheckFinite(psi, level_surface.num_vertices(), "psi", "vertex").WithContext(path));
   if (static_cast<int>(direction.size()) != nf)
     return Status::InvalidInput(path + ": direction has " + std::to_string(direction.size()) +
                                 " vectors, expected " + std::to_string(nf) + " (one per face)");
@@ -342,17 +344,27 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
   const double min_stride = std::max(1.0, std::ceil(kMinLevelSpacingPx / spacing_px));
   const LevelSelection phi_levels = SelectLevels(phi, min_stride);
   const LevelSelection psi_levels = SelectLevels(psi, min_stride);
-  canvas.Polylines(TopViewLevelLines(surface, psi, psi_levels), kPsiLine);
-  canvas.Polylines(TopViewLevelLines(surface, phi, phi_levels), kPhiLine);
+  canvas.Polylines(TopViewLevelLines(level_surface, psi, psi_levels), kPsiLine);
+  canvas.Polylines(TopViewLevelLines(level_surface, phi, phi_levels), kPhiLine);
+  std::vector<LegendEntry> legend{
+      {kPhiLine.colour.Hex(), LevelLegendLabel("φ = i·h", spacing, phi_levels.stride, "aligned with the guidance")},
+      {kPsiLine.colour.Hex(), LevelLegendLabel("ψ = j·h", spacing, psi_levels.stride, "conjugate to φ")},
+      {kFaintStreamline.colour.Hex(), "integral curves of the guidance field"},
+      {hatch, "alignment not enforced (weight < 0.5)"}};
+  if (seams != nullptr && seams->num_paths() > 0) {
+    Rings paths;
+    for (int p = 0; p < seams->num_paths(); ++p) {
+      std::vector<Vector2d> xy;
+      for (const int v : seams->path(p)) xy.push_back(surface.position(v).head<2>());
+      paths.push_back(std::move(xy));
+      if (!surface.is_boundary(seams->path(p).front())) canvas.Circle(paths.back().front(), 4.0, kSeamLine.colour);
+    }
+    canvas.Polylines(paths, kSeamLine);
+    legend.push_back({kSeamLine.colour.Hex(), "seams (level lines continue across; dots: branch points)"});
+  }
 
   DrawOutlineScaleAndNorth(surface, &canvas);
-  canvas.Legend(
-      {{kPhiLine.colour.Hex(),
-        LevelLegendLabel("φ = i·h", spacing, phi_levels.stride, "aligned with the guidance")},
-       {kPsiLine.colour.Hex(),
-        LevelLegendLabel("ψ = j·h", spacing, psi_levels.stride, "conjugate to φ")},
-       {kFaintStreamline.colour.Hex(), "integral curves of the guidance field"},
-       {hatch, "alignment not enforced (weight < 0.5)"}});
+  canvas.Legend(legend);
   return canvas.Write(path);
 }
 

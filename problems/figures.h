@@ -28,6 +28,7 @@
 
 #include "geometry/mesh.h"
 #include "geometry/status.h"
+#include "geometry/seams.h"
 #include "geometry/surface_model.h"
 #include "geometry/svg_canvas.h"
 
@@ -72,11 +73,15 @@ Status WriteGuidanceFigure(const SurfaceModel& surface,
 // legend says so. InvalidInput if φ or ψ does not have one finite value per vertex,
 // `direction` one vector per face, `weight` one finite value per face, or spacing is not a
 // positive number.
+// seams (optional, geometry/seams.h): φ, ψ are then per vertex of seams->cut(), the lines
+// are traced on the cut surface (they meet across the seams), and the seams are drawn in red
+// with their branch points (interior ends) as dots.
 Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double>& phi,
                            const std::vector<double>& psi, double spacing,
                            const std::vector<Eigen::Vector3d>& direction,
                            const std::vector<double>& weight, const std::string& title,
-                           const std::string& path, const FigureOptions& options = {});
+                           const std::string& path, const FigureOptions& options = {},
+                           const SeamCut* seams = nullptr);
 
 // Paper Fig. 9/14: top view of the grid shell, each face filled with the mean nodal
 // compliance of its nodes, members drawn as thin dark lines, reference outline, colour bar

@@ -920,16 +920,49 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   return Status::Ok();
 }
 
+namespace {
+
+// Scales φ, ψ by `factor` (layout.density: panel_area). With seams the offsets become
+// round(factor·a) and φ, ψ are refitted to the scaled gradients under the rounded
+// transitions (one Poisson solve each), so that level lines still meet across the seams.
+Status ScaleLevelSets(double factor, double h, LevelSetSolution* solution) {
+  LevelSetSeams& seams = solution->seams;
+  if (!seams.cut) {
+    for (double& value : solution->phi) value *= factor;
+    for (double& value : solution->psi) value *= factor;
+    return Status::Ok();
+  }
+  const SurfaceModel& s = seams.cut->cut();
+  const LevelSetGeometry geo = Precompute(s);
+  for (int family = 0; family < 2; ++family) {
+    std::vector<double>& u = family == 0 ? solution->phi_cut : solution->psi_cut;
+    std::vector<double>& offsets = family == 0 ? seams.phi_offset : seams.psi_offset;
+    std::vector<Eigen::Vector3d> target(s.num_faces());
+    for (int f = 0; f < s.num_faces(); ++f) target[f] = factor * Gradient(geo, s, f, u);
+    for (double& a : offsets) a = std::round(factor * a);
+    PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, std::vector<double>(s.num_faces(), 1.0), &u, &seams, family, false, h));
+    ProjectTransitions(seams, offsets, &u);
+  }
+  solution->phi = seams.cut->ToOriginal(solution->phi_cut);
+  solution->psi = seams.cut->ToOriginal(solution->psi_cut);
+  return Status::Ok();
+}
+
+}  // namespace
+
 Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
   SurfaceModel& surface = *state->surface;
   LevelSetSolution& solution = state->levelsets;
-  PQ_RETURN_IF_ERROR(SolveLevelSets(surface, state->guidance, state->config.levelset, state->config.layout.spacing,
-                                    &solution));
+  const double h = state->config.layout.spacing;
+  PQ_RETURN_IF_ERROR(SolveLevelSets(surface, state->guidance, state->config.levelset, h, &solution));
+  const SeamCut* seams = solution.seams.cut.get();
+  const SurfaceModel& level_surface = seams != nullptr ? seams->cut() : surface;
+  const std::vector<double>& phi_values = seams != nullptr ? solution.phi_cut : solution.phi;
+  const std::vector<double>& psi_values = seams != nullptr ? solution.psi_cut : solution.psi;
   double density_scale = 1.0;
   if (state->config.layout.density == "panel_area") {
-    density_scale = PanelAreaScale(surface, solution.phi, solution.psi, state->config.layout.spacing);
-    for (double& value : solution.phi) value *= density_scale;
-    for (double& value : solution.psi) value *= density_scale;
+    density_scale = PanelAreaScale(level_surface, phi_values, psi_values, h);
+    PQ_RETURN_IF_ERROR(ScaleLevelSets(density_scale, h, &solution));
     LOG(INFO) << "levelset: φ and ψ scaled by " << density_scale << " for a mean panel area of h²";
   }
   auto phi = surface.VertexField<double>("phi");
@@ -943,6 +976,7 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   (*metrics)["ceres"] = solution.solver;
   (*metrics)["working_mesh_triangles"] = solution.working_faces;
   (*metrics)["density_scale"] = density_scale;
+  (*metrics)["seams"] = solution.seams.ToJson();
   PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
   PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
   const auto& m = solution.metrics;
@@ -951,10 +985,10 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
             << ", conjugacy " << m.conjugacy_rms << ", min crossing " << m.min_crossing_angle_deg << "° ("
             << m.faces_below_min_angle << " faces below " << state->config.levelset.min_angle << "°), "
             << m.foldovers << " fold-overs";
-  PQ_RETURN_IF_ERROR(WriteLevelSetFigure(surface, solution.phi, solution.psi, state->config.layout.spacing,
-                                         state->guidance.direction, state->guidance.weight,
+  PQ_RETURN_IF_ERROR(WriteLevelSetFigure(surface, phi_values, psi_values, h, state->guidance.direction,
+                                         state->guidance.weight,
                                          "Level sets: φ (black) aligned with the guidance, ψ (blue) conjugate",
-                                         out->Path("figures/levelsets.svg")));
+                                         out->Path("figures/levelsets.svg"), {}, seams));
   return Status::Ok();
 }
 
