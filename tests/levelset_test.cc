@@ -157,3 +157,90 @@ TEST(LevelSets, CrossingRoundsLiftEveryFaceToTheMinimumAngle) {
 
 }  // namespace
 }  // namespace pqlayout
+
+namespace pqlayout {
+namespace {
+
+TriMesh Generated(const std::string& name, double width, double depth, double edge) {
+  GeneratorParams p;
+  p.name = name;
+  p.width = width;
+  p.depth = depth;
+  p.edge_length = edge;
+  TriMesh mesh;
+  EXPECT_TRUE(GenerateSurface(p, &mesh).ok());
+  return mesh;
+}
+
+// Flat annulus (radii 4 and 10 m), guidance radial: φ's level lines must be rays, so φ grows
+// by a whole number of levels once round the hole, which only a seam allows. With the seam:
+// one translation seam (sign +1) whose offset is the number of rays, and alignment ~0; without
+// it (levelset.seams: false) a single-valued φ must cross the rays somewhere.
+TEST(LevelSets, AnnulusWithRadialGuidanceNeedsATranslationSeam) {
+  const SurfaceModel s(Generated("annulus", 20.0, 8.0, 0.6));
+  const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d& c) { return Eigen::Vector3d(c.x(), c.y(), 0); });
+  const double h = 1.5;
+  LevelsetOptions options;
+  options.working_edge = 0.3;  // solve on this mesh (seams are not cut on a remeshed copy)
+  LevelSetSolution seamed, single;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, h, &seamed).ok());
+  options.seams = false;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, h, &single).ok());
+  std::cout << "annulus: alignment " << seamed.metrics.alignment_rms_deg << "° with the seam, "
+            << single.metrics.alignment_rms_deg << "° without; offset "
+            << (seamed.seams.cut ? seamed.seams.phi_offset[0] : 0.0) << "\n";
+  ASSERT_TRUE(seamed.seams.cut != nullptr);
+  ASSERT_EQ(seamed.seams.cut->num_paths(), 1);
+  EXPECT_TRUE(seamed.seams.tips.empty());
+  EXPECT_EQ(seamed.seams.sign[0], 1);
+  // N rays: |∇φ| = N / (2πr); the best N for ∫ (h|∇φ| − 1)² dA (and for the Poisson guess)
+  // is 2π (R − r₀) / (h ln(R / r₀)) = 27.4 for R = 10, r₀ = 4, h = 1.5.
+  EXPECT_EQ(std::abs(seamed.seams.phi_offset[0]), std::round(2 * M_PI * 6.0 / (h * std::log(2.5))));
+  EXPECT_EQ(seamed.seams.phi_offset[0], std::round(seamed.seams.phi_offset[0]));
+  EXPECT_EQ(seamed.seams.psi_offset[0], 0.0);  // ψ (the circles) is single-valued
+  EXPECT_LE(seamed.metrics.alignment_rms_deg, 1.0);
+  EXPECT_GE(single.metrics.alignment_rms_deg, 5.0);
+  EXPECT_EQ(seamed.metrics.foldovers, 0);
+  EXPECT_GE(seamed.metrics.min_crossing_angle_deg, 80.0);  // flat: ψ orthogonal to φ
+  // The transition holds exactly: every seam vertex's plus copy is its minus copy + offset.
+  for (const auto& pair : seamed.seams.cut->copy_pairs())
+    EXPECT_NEAR(seamed.phi_cut[pair.plus], seamed.phi_cut[pair.minus] + seamed.seams.phi_offset[0], 1e-9);
+}
+
+// Flat disc with a line field of index −½ at the origin (direction angle −θ/2, a trisector
+// like the Great Court's umbilics): the field turns by −π once round, so φ must change sign
+// across a seam from the singularity to the boundary (sign −1), with a branch point there.
+TEST(LevelSets, TrisectorNeedsASignFlipSeamWithABranchPoint) {
+  const SurfaceModel s(Generated("disk", 24.0, 0.0, 0.6));
+  const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d& c) {
+    const double a = -0.5 * std::atan2(c.y(), c.x());
+    return Eigen::Vector3d(std::cos(a), std::sin(a), 0);
+  });
+  const double h = 1.5;
+  LevelsetOptions options;
+  options.working_edge = 0.3;  // solve on this mesh (seams are not cut on a remeshed copy)
+  LevelSetSolution seamed, single;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, h, &seamed).ok());
+  options.seams = false;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, h, &single).ok());
+  std::cout << "trisector: alignment " << seamed.metrics.alignment_rms_deg << "° with the seam, "
+            << single.metrics.alignment_rms_deg << "° without; CV φ " << seamed.metrics.spacing_cv_phi
+            << ", min crossing " << seamed.metrics.min_crossing_angle_deg << "°\n";
+  ASSERT_TRUE(seamed.seams.cut != nullptr);
+  ASSERT_EQ(seamed.seams.cut->num_paths(), 1);
+  ASSERT_EQ(seamed.seams.tips.size(), 1u);
+  EXPECT_LT(s.position(seamed.seams.tips[0]).norm(), 0.7);  // at the singularity
+  EXPECT_EQ(seamed.seams.sign[0], -1);
+  EXPECT_LE(seamed.metrics.alignment_rms_deg, 3.0);  // 2.3° measured: spacing gives way near the branch point
+  EXPECT_GE(single.metrics.alignment_rms_deg, 2.0 * seamed.metrics.alignment_rms_deg);
+  EXPECT_EQ(seamed.metrics.foldovers, 0);
+  // u₊ = −u₋ + a on the seam, and a/2 at the branch point.
+  const double a = seamed.seams.phi_offset[0];
+  for (const auto& pair : seamed.seams.cut->copy_pairs()) {
+    if (pair.minus == pair.plus) EXPECT_DOUBLE_EQ(seamed.phi_cut[pair.minus], a / 2);
+    else EXPECT_NEAR(seamed.phi_cut[pair.plus], -seamed.phi_cut[pair.minus] + a, 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace pqlayout
