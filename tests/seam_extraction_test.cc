@@ -99,16 +99,30 @@ void ExpectManifoldWithOrigins(const SurfaceModel& s, const ExtractedMesh& out) 
   EXPECT_NEAR(total, s.total_area(), 0.03 * s.total_area());
 }
 
+// The annulus r ∈ [4, 10] (reference edge `edge`) cut open along one seam.
+struct CutAnnulus {
+  std::unique_ptr<SurfaceModel> surface;
+  std::vector<std::vector<int>> paths;
+  std::unique_ptr<SeamCut> seam_cut;
+};
+CutAnnulus MakeCutAnnulus(double edge) {
+  CutAnnulus a;
+  a.surface = std::make_unique<SurfaceModel>(GeneratedMesh("annulus", 20.0, 8.0, 0.0, edge));
+  a.paths = RouteSeams(*a.surface, std::vector<double>(a.surface->num_faces(), 1.0), {});
+  EXPECT_EQ(a.paths.size(), 1u);
+  EXPECT_TRUE(SeamCut::Build(*a.surface, a.paths, &a.seam_cut).ok());
+  return a;
+}
+
 // Annulus r ∈ [4, 10] cut along one seam; φ = N θ / 2π with θ continuous on the cut surface
 // (so φ jumps by N across the seam: sign +1, offset ±N), ψ = r − ½ (no jump): N radial lines
 // and the circles r = 4.5 … 9.5 between the two boundary circles. Every cell a quad, none
 // split at the seam: N · 8 vertices, N · 7 faces, χ = 0.
 TEST(SeamExtraction, AnnulusRadialGridIsSeamless) {
-  const SurfaceModel s(GeneratedMesh("annulus", 20.0, 8.0, 0.0, 0.5));
-  const auto paths = RouteSeams(s, std::vector<double>(s.num_faces(), 1.0), {});
-  ASSERT_EQ(paths.size(), 1u);
-  std::unique_ptr<SeamCut> seam_cut;
-  ASSERT_TRUE(SeamCut::Build(s, paths, &seam_cut).ok());
+  const CutAnnulus annulus = MakeCutAnnulus(0.5);
+  const SurfaceModel& s = *annulus.surface;
+  const auto& paths = annulus.paths;
+  const auto& seam_cut = annulus.seam_cut;
   const SurfaceModel& cut = seam_cut->cut();
   const int n = 24;
   const int middle = paths[0][paths[0].size() / 2];
@@ -166,12 +180,59 @@ TEST(SeamExtraction, AnnulusRadialGridIsSeamless) {
   }
 }
 
+// Both families jump: φ = N θ / 2π (offset ±N) and ψ = r − 0.3 + M θ / 2π (offset ±M), so
+// the ψ lines are spirals that run from the inner to the outer boundary. Without collapses
+// or boundary fixes the mesh is exactly the arrangement of the curves: on every radial line
+// k the 6 levels of ψ strictly inside plus its two ends, plus the ends of the M spirals
+// that meet each boundary circle; every interior vertex a crossing of valence 4, every
+// interior cell a quad.
+TEST(SeamExtraction, AnnulusSpiralGridJumpsInBothFamilies) {
+  const CutAnnulus annulus = MakeCutAnnulus(0.5);
+  const SurfaceModel& s = *annulus.surface;
+  const auto& seam_cut = annulus.seam_cut;
+  const SurfaceModel& cut = seam_cut->cut();
+  const int n = 24, spiral = 3;
+  const std::vector<double> theta = UnwrappedAngle(cut, Eigen::Vector2d::Zero(), seam_cut->copy_pairs()[0].minus);
+  std::vector<double> phi(cut.num_vertices()), psi(cut.num_vertices());
+  for (int v = 0; v < cut.num_vertices(); ++v) {
+    phi[v] = n * theta[v] / (2.0 * M_PI);
+    psi[v] = cut.position(v).head<2>().norm() - 0.3 + spiral * theta[v] / (2.0 * M_PI);
+  }
+  const SeamTransitions transitions{seam_cut.get(), {1}, {MeasuredOffset(*seam_cut, 0, 1, phi)},
+                                    {MeasuredOffset(*seam_cut, 0, 1, psi)}};
+  EXPECT_EQ(std::abs(transitions.phi_offset[0]), n);
+  EXPECT_EQ(std::abs(transitions.psi_offset[0]), spiral);
+  ExtractedMesh out;
+  ASSERT_TRUE(ExtractQuadMesh(s, transitions, phi, psi, 30.0, 0.0, &out, false).ok());
+  ExpectManifoldWithOrigins(s, out);
+  const ExtractedMeshMetrics m = MeasureExtractedMesh(s, out, 30.0);
+  std::cout << "spiral annulus: " << m.n_vertices << " vertices, " << m.n_faces << " faces, quad fraction "
+            << m.quad_fraction << ", χ = " << m.euler_characteristic << "\n";
+  EXPECT_EQ(m.euler_characteristic, 0);
+  EXPECT_EQ(m.boundary_loops, 2);
+  EXPECT_TRUE(m.interior_non_quads.empty());
+  int interior = 0;
+  for (const auto v : out.mesh.vertices()) {
+    if (out.mesh.is_boundary(v)) continue;
+    ++interior;
+    EXPECT_EQ(out.mesh.valence(v), 4u) << "vertex " << v.idx();
+    // On a radial line and on a spiral (the spiral's value at the vertex's angle on either branch).
+    const Eigen::Vector3d p = ToEigen(out.mesh.point(v));
+    const double angle = std::atan2(p.y(), p.x());
+    const double k = n * angle / (2.0 * M_PI);
+    const double j = p.head<2>().norm() - 0.3 + spiral * angle / (2.0 * M_PI);
+    EXPECT_NEAR(k, std::round(k), 0.02) << "vertex " << v.idx();
+    EXPECT_NEAR(j, std::round(j), 0.02) << "vertex " << v.idx();
+  }
+  EXPECT_EQ(interior, n * 6);
+  EXPECT_EQ(m.n_vertices, n * 8 + 2 * spiral);
+}
+
 // Transitions that the values do not satisfy are refused with InvalidInput.
 TEST(SeamExtraction, RefusesWrongTransitions) {
-  const SurfaceModel s(GeneratedMesh("annulus", 20.0, 8.0, 0.0, 1.0));
-  const auto paths = RouteSeams(s, std::vector<double>(s.num_faces(), 1.0), {});
-  std::unique_ptr<SeamCut> seam_cut;
-  ASSERT_TRUE(SeamCut::Build(s, paths, &seam_cut).ok());
+  const CutAnnulus annulus = MakeCutAnnulus(1.0);
+  const SurfaceModel& s = *annulus.surface;
+  const auto& seam_cut = annulus.seam_cut;
   const SurfaceModel& cut = seam_cut->cut();
   const std::vector<double> theta = UnwrappedAngle(cut, Eigen::Vector2d::Zero(), seam_cut->copy_pairs()[0].minus);
   std::vector<double> phi(cut.num_vertices()), psi(cut.num_vertices());
@@ -205,10 +266,12 @@ struct BranchPoint {
 };
 
 // Disk of radius 10 cut from the interior vertex nearest the origin (the tip) to the
-// boundary; φ + iψ = e^{iα} c (z − tip)^{3/2} + (shift, shift) with the branch continuous on
-// the cut surface, so φ₊ = −φ₋ + 2·shift and ψ₊ = −ψ₋ + 2·shift (sign −1). c: level spacing
-// 1 m at radius 5.
-BranchPoint ExtractBranchPoint(double alpha, double shift, bool pair_boundary_triangles = true) {
+// boundary; φ + iψ = c r^m e^{i(kθ + α)} + (shift, shift) about the tip, θ continuous on the
+// cut surface. With k = 3/2 (a −½ singularity of both families) or k = ½ (+½), θ jumps by 2π
+// and the angle kθ by an odd multiple of π across the seam, so φ₊ = −φ₋ + 2·shift and ψ₊ =
+// −ψ₋ + 2·shift (sign −1). k = 3/2: c (z − tip)^{3/2} with c for a level spacing of 1 m at
+// radius 5; k = ½: r e^{iθ/2} (spacing 1 to 2 m everywhere).
+BranchPoint ExtractBranchPoint(double alpha, double shift, bool pair_boundary_triangles = true, double k = 1.5) {
   const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.5));
   const int tip = ClosestInterior(s, 0.0, 0.0);
   const auto paths = RouteSeams(s, std::vector<double>(s.num_faces(), 1.0), {tip});
@@ -218,13 +281,14 @@ BranchPoint ExtractBranchPoint(double alpha, double shift, bool pair_boundary_tr
   const SurfaceModel& cut = seam_cut->cut();
   const Eigen::Vector2d centre = s.position(tip).head<2>();
   const std::vector<double> theta = UnwrappedAngle(cut, centre, seam_cut->copy_pairs().back().minus);
-  const double c = 1.0 / (1.5 * std::sqrt(5.0));
+  const double c = k == 1.5 ? 1.0 / (1.5 * std::sqrt(5.0)) : 1.0;
+  const double m = k == 1.5 ? 1.5 : 1.0;
   std::vector<double> phi(cut.num_vertices()), psi(cut.num_vertices());
   for (int v = 0; v < cut.num_vertices(); ++v) {
     const double r = (cut.position(v).head<2>() - centre).norm();
-    const double arg = 1.5 * theta[v] + alpha;
-    phi[v] = c * std::pow(r, 1.5) * std::cos(arg) + shift;
-    psi[v] = c * std::pow(r, 1.5) * std::sin(arg) + shift;
+    const double arg = k * theta[v] + alpha;
+    phi[v] = c * std::pow(r, m) * std::cos(arg) + shift;
+    psi[v] = c * std::pow(r, m) * std::sin(arg) + shift;
   }
   const int a = static_cast<int>(std::lround(2 * shift));
   EXPECT_EQ(MeasuredOffset(*seam_cut, 0, -1, phi), a);
@@ -236,7 +300,7 @@ BranchPoint ExtractBranchPoint(double alpha, double shift, bool pair_boundary_tr
                   .ok());
   ExpectManifoldWithOrigins(s, result.out);
   result.m = MeasureExtractedMesh(s, result.out, 30.0);
-  std::cout << "branch point α = " << alpha << ", shift " << shift << ": " << result.m.n_vertices << " vertices, "
+  std::cout << "branch point k = " << k << ", α = " << alpha << ", shift " << shift << ": " << result.m.n_vertices << " vertices, "
             << result.m.n_faces << " faces, quad fraction " << result.m.quad_fraction << ", χ = "
             << result.m.euler_characteristic << ", interior non-quads " << result.m.interior_non_quads.size()
             << ", split interior polygons " << result.out.stats.split_interior_polygons << ", valences";
@@ -291,6 +355,25 @@ TEST(SeamExtraction, BranchPointInsideACellIsAHexagonOrTwoQuads) {
   EXPECT_EQ(valences.at(5).size(), 2u);
   for (const auto& p : valences.at(5)) EXPECT_LE((p - split.tip).norm(), 4.0);
   for (const auto& [valence, points] : valences) EXPECT_TRUE(valence == 4 || valence == 5) << "valence " << valence;
+}
+
+// A +½ singularity of both families at a lattice vertex (k = ½, offsets 0): only two cells
+// meet at the tip (the curves turn by π round it), so it is no mesh vertex; the φ line and
+// the ψ line that end there form one curve through it, and the two cells beside the tip are
+// triangles (a valence-2 vertex cannot be). Everything else stays quads of valence-4
+// vertices; the identification itself is exact (no unmatched seam edges).
+TEST(SeamExtraction, PlusHalfTipGivesTwoTriangles) {
+  for (const double alpha : {0.0, 0.4, 1.1}) {
+    SCOPED_TRACE(alpha);
+    const BranchPoint b = ExtractBranchPoint(alpha, 0.0, true, 0.5);
+    ASSERT_EQ(b.m.interior_non_quads.size(), 2u);
+    for (const auto& [sides, centroid] : b.m.interior_non_quads) {
+      EXPECT_EQ(sides, 3);
+      EXPECT_LE((centroid - b.tip).norm(), 1.0);  // measured 0.47
+    }
+    for (const auto& [valence, points] : InteriorValences(b.out.mesh)) EXPECT_EQ(valence, 4);
+    for (const auto v : b.out.mesh.vertices()) EXPECT_GT((ToEigen(b.out.mesh.point(v)) - b.tip).norm(), 0.1);
+  }
 }
 
 // A seam across which nothing jumps (sign +1, offsets 0, the same value on both copies)
