@@ -53,6 +53,7 @@ using Polygon = std::vector<Corner>;
 struct Piece {
   int label[2];  // (⌊φ⌋, ⌊ψ⌋)
   Polygon corners;
+  int face;      // the reference triangle it was cut from
 };
 
 // Values within this distance of an integer snap to it (made once per key, so consistent).
@@ -64,9 +65,16 @@ double Snap(double x) {
 
 class Cutter {
  public:
+  // vertex_on_boundary, edge_on_boundary: per vertex / edge of `surface`, on the reference
+  // boundary (seam edges of a cut surface are not).
   Cutter(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
-         const std::vector<int>& corners)
-      : surface_(surface), values_{&phi, &psi}, vertex_point_(surface.num_vertices(), -1) {
+         const std::vector<int>& corners, const std::vector<char>& vertex_on_boundary,
+         const std::vector<char>& edge_on_boundary)
+      : surface_(surface),
+        values_{&phi, &psi},
+        vertex_on_boundary_(vertex_on_boundary),
+        edge_on_boundary_(edge_on_boundary),
+        vertex_point_(surface.num_vertices(), -1) {
     is_corner_.assign(surface.num_vertices(), 0);
     for (const int v : corners) is_corner_[v] = 1;
     const TriMesh& mesh = surface.mesh();
@@ -88,8 +96,16 @@ class Cutter {
     for (int k = 0; k < 3; ++k)
       triangle.push_back({VertexPoint(ids[k], f), {Carrier::kReferenceEdge, face_edges_[f][k]}});
     for (const auto& [i, slab_phi] : Slabs(f, triangle, kPhi)) {
-      for (const auto& [j, slab] : Slabs(f, slab_phi, kPsi)) pieces->push_back({{i, j}, slab});
+      for (const auto& [j, slab] : Slabs(f, slab_phi, kPsi)) pieces->push_back({{i, j}, slab, f});
     }
+  }
+
+  // The point of vertex v, or −1 if no face used it yet.
+  int VertexPointId(int v) const { return vertex_point_[v]; }
+  // The point where `level` of `family` crosses the inside of edge e, or −1 if none was made.
+  int EdgePointId(int e, int family, int level) const {
+    const auto found = point_of_key_.find(std::make_tuple(1, e, family, level));
+    return found == point_of_key_.end() ? -1 : found->second;
   }
 
   // The reference edge both points lie on, or -1.
@@ -117,7 +133,7 @@ class Cutter {
     p.origin_face = f;
     const auto ids = surface_.face_vertices(f);
     for (int k = 0; k < 3; ++k) p.barycentric[k] = ids[k] == v ? 1.0 : 0.0;
-    p.on_boundary = surface_.is_boundary(v);
+    p.on_boundary = vertex_on_boundary_[v];
     p.corner = is_corner_[v];
     vertex_point_[v] = static_cast<int>(points_.size());
     points_.push_back(p);
@@ -200,7 +216,7 @@ class Cutter {
     x.origin_face = f;
     x.barycentric[k] = ids[k] == a ? 1.0 - x.t : x.t;
     x.barycentric[(k + 1) % 3] = ids[k] == a ? x.t : 1.0 - x.t;
-    x.on_boundary = surface_.mesh().is_boundary(EdgeHandle(e));
+    x.on_boundary = edge_on_boundary_[e];
     return Add(key, x);
   }
 
@@ -278,6 +294,8 @@ class Cutter {
 
   const SurfaceModel& surface_;
   const std::vector<double>* values_[2];
+  const std::vector<char>& vertex_on_boundary_;
+  const std::vector<char>& edge_on_boundary_;
   std::vector<char> is_corner_;
   std::vector<std::array<int, 3>> face_edges_;
   std::vector<int> vertex_point_;
@@ -291,9 +309,30 @@ struct PieceEdge {
   int piece, k;  // edge from corner k to k + 1 of piece
 };
 
+// The label a cell has on the other side of a seam edge: u₊ = sign·u₋ + offset, so a piece
+// strictly between levels i and i + 1 on the minus side lies between sign·i + offset and
+// sign·(i + 1) + offset on the plus side.
+struct LabelMap {
+  int sign = 1;
+  int offset[2] = {0, 0};
+  bool forward = true;  // minus → plus (else plus → minus)
+  std::array<int, 2> Apply(const int label[2]) const {
+    std::array<int, 2> mapped{};
+    for (int family = 0; family < 2; ++family)
+      mapped[family] = sign < 0 ? offset[family] - label[family] - 1
+                                : label[family] + (forward ? offset[family] : -offset[family]);
+    return mapped;
+  }
+};
+// (face, face across a seam edge) → the map of labels from the first to the second.
+using SeamLabelMaps = std::map<std::pair<int, int>, LabelMap>;
+
 class Regions {
  public:
-  Regions(const std::vector<Piece>& pieces) : pieces_(pieces), parent_(pieces.size()) {
+  // canonical: per cut point, the point it stands for (points on the two sides of a seam are
+  // one point); across: label maps between faces on the two sides of a seam edge.
+  Regions(const std::vector<Piece>& pieces, const std::vector<int>& canonical, const SeamLabelMaps& across)
+      : pieces_(pieces), canonical_(canonical), across_(across), parent_(pieces.size()) {
     std::iota(parent_.begin(), parent_.end(), 0);
     for (size_t p = 0; p < pieces.size(); ++p) {
       const Polygon& c = pieces[p].corners;
@@ -316,13 +355,19 @@ class Regions {
   }
   const Carrier& PieceCarrier(PieceEdge e) const { return pieces_[e.piece].corners[e.k].carrier; }
 
-  // The opposite edge in a piece of the same label, or null.
+  // The opposite edge in a piece of the same cell (the same label, or across a seam the
+  // corresponding one), or null.
   const PieceEdge* Twin(PieceEdge e) const {
     const auto it = edge_of_.find(Key(To(e), From(e)));
     if (it == edge_of_.end()) return nullptr;
     const Piece& a = pieces_[e.piece];
     const Piece& b = pieces_[it->second.piece];
-    if (a.label[0] != b.label[0] || a.label[1] != b.label[1]) return nullptr;
+    std::array<int, 2> label{a.label[0], a.label[1]};
+    if (a.face != b.face && !across_.empty()) {
+      const auto map = across_.find({a.face, b.face});
+      if (map != across_.end()) label = map->second.Apply(a.label);
+    }
+    if (label[0] != b.label[0] || label[1] != b.label[1]) return nullptr;
     return &it->second;
   }
 
@@ -364,13 +409,15 @@ class Regions {
   }
 
  private:
-  static std::pair<int, int> Key(int a, int b) { return {a, b}; }
+  std::pair<int, int> Key(int a, int b) const { return {canonical_[a], canonical_[b]}; }
   PieceEdge Following(PieceEdge e) const {
     return {e.piece, int((e.k + 1) % pieces_[e.piece].corners.size())};
   }
   void Union(int a, int b) { parent_[Find(a)] = Find(b); }
 
   const std::vector<Piece>& pieces_;
+  const std::vector<int>& canonical_;
+  const SeamLabelMaps& across_;
   std::vector<int> parent_;
   std::map<std::pair<int, int>, PieceEdge> edge_of_;
 };
@@ -810,26 +857,103 @@ std::vector<int> Padded(std::vector<int> kept, const std::vector<int>& points, c
   return kept;
 }
 
-}  // namespace
+// What the extraction needs to know about the surface it cuts besides its triangles: the
+// reference boundary and corners (those of the original surface), and, for a surface cut
+// open along seams, the seams and their transitions.
+struct SurfaceInfo {
+  std::vector<int> corners;  // vertices of the surface that is cut
+  std::vector<char> vertex_on_boundary, edge_on_boundary;
+  const SeamCut* seams = nullptr;
+  const SeamTransitions* transitions = nullptr;
+};
 
-Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
-                       double corner_angle_deg, double min_edge_length, ExtractedMesh* out,
-                       bool pair_boundary_triangles) {
-  const int nv = surface.num_vertices();
-  if (static_cast<int>(phi.size()) != nv || static_cast<int>(psi.size()) != nv)
-    return Status::InvalidInput("extract: φ and ψ need one value per reference vertex (" + std::to_string(nv) + ")");
-  for (int v = 0; v < nv; ++v)
-    if (!std::isfinite(phi[v]) || !std::isfinite(psi[v]) || std::abs(phi[v]) > 1e6 || std::abs(psi[v]) > 1e6)
-      return Status::InvalidInput("extract: φ or ψ is not finite (or absurdly large) at vertex " + std::to_string(v));
+// Per cut point, the point it stands for: the two sides of every seam identified (a vertex
+// copy with its twin copy; the crossing of level L of a family with the minus edge with that
+// of s·L + offset with the plus edge). The smallest id of each class stands for it.
+std::vector<int> IdentifySeamPoints(const Cutter& cutter, const SeamCut& seams, const SeamTransitions& transitions) {
+  const std::vector<CutPoint>& points = cutter.points();
+  std::vector<int> parent(points.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  const auto unite = [&](int a, int b) {
+    if (a < 0 || b < 0) return;
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  for (const SeamCopyPair& pair : seams.copy_pairs()) unite(cutter.VertexPointId(pair.minus), cutter.VertexPointId(pair.plus));
+  std::unordered_map<int, const SeamEdge*> seam_of_minus_edge;
+  for (const SeamEdge& e : seams.seam_edges()) seam_of_minus_edge[e.cut_edge_minus] = &e;
+  for (size_t p = 0; p < points.size(); ++p) {
+    if (points[p].edge < 0) continue;
+    const auto seam = seam_of_minus_edge.find(points[p].edge);
+    if (seam == seam_of_minus_edge.end()) continue;
+    const int path = seam->second->path;
+    const int offset[2] = {transitions.phi_offset[path], transitions.psi_offset[path]};
+    // The point's key family has an integer value; the other may too (both lines cross the
+    // edge there), and the other side may have keyed the point by either.
+    for (const int family : {kPhi, kPsi}) {
+      const double level = points[p].value[family];
+      if (level != std::floor(level)) continue;
+      const int q = cutter.EdgePointId(seam->second->cut_edge_plus, family,
+                                       transitions.sign[path] * static_cast<int>(level) + offset[family]);
+      if (q >= 0) {
+        unite(int(p), q);
+        break;
+      }
+    }
+  }
+  std::vector<int> canonical(points.size());
+  for (size_t p = 0; p < points.size(); ++p) canonical[p] = find(int(p));
+  return canonical;
+}
 
-  Cutter cutter(surface, phi, psi, surface.BoundaryCorners(corner_angle_deg * M_PI / 180.0));
+// The label maps across every seam edge, both ways.
+SeamLabelMaps LabelMapsAcross(const SeamCut& seams, const SeamTransitions& transitions) {
+  SeamLabelMaps across;
+  for (const SeamEdge& e : seams.seam_edges()) {
+    LabelMap map;
+    map.sign = transitions.sign[e.path];
+    map.offset[kPhi] = transitions.phi_offset[e.path];
+    map.offset[kPsi] = transitions.psi_offset[e.path];
+    across[{e.minus_face, e.plus_face}] = map;
+    map.forward = false;
+    across[{e.plus_face, e.minus_face}] = map;
+  }
+  return across;
+}
+
+// Validated input: the extraction proper on `surface` (the original, or the cut surface).
+Status Extract(const SurfaceModel& surface, const SurfaceInfo& info, const std::vector<double>& phi,
+               const std::vector<double>& psi, double min_edge_length, ExtractedMesh* out,
+               bool pair_boundary_triangles) {
+  Cutter cutter(surface, phi, psi, info.corners, info.vertex_on_boundary, info.edge_on_boundary);
   std::vector<Piece> pieces;
   for (int f = 0; f < surface.num_faces(); ++f) cutter.CutFace(f, &pieces);
   const std::vector<CutPoint>& cut = cutter.points();
 
-  Regions regions(pieces);
+  std::vector<int> canonical(cut.size());
+  std::iota(canonical.begin(), canonical.end(), 0);
+  SeamLabelMaps across;
+  if (info.seams != nullptr) {
+    canonical = IdentifySeamPoints(cutter, *info.seams, *info.transitions);
+    across = LabelMapsAcross(*info.seams, *info.transitions);
+  }
+  Regions regions(pieces, canonical, across);
   const auto loops = regions.Loops();
   *out = ExtractedMesh();
+  if (info.seams != nullptr) {
+    for (size_t p = 0; p < pieces.size(); ++p) {
+      const Polygon& c = pieces[p].corners;
+      for (size_t k = 0; k < c.size(); ++k) {
+        const int edge = cutter.CommonEdge(c[k].point, c[(k + 1) % c.size()].point);
+        if (edge >= 0 && info.seams->is_seam_edge(edge) && !regions.Twin({int(p), int(k)}))
+          ++out->stats.unmatched_seam_edges;
+      }
+    }
+  }
   Polygons polygons;
   std::vector<int> vertex_of_point(cut.size(), -1);
   // The loop of every disc region: its points and the curve each loop edge lies on
@@ -848,7 +972,7 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
       const int a = regions.From(e), b = regions.To(e);
       Carrier c = regions.PieceCarrier(e);
       const int edge = cutter.CommonEdge(a, b);
-      if (edge >= 0 && surface.mesh().is_boundary(EdgeHandle(edge))) {
+      if (edge >= 0 && info.edge_on_boundary[edge]) {
         c = {Carrier::kBoundary, 0};
       } else if (c.kind == Carrier::kReferenceEdge) {
         for (const int family : {kPhi, kPsi})
@@ -856,7 +980,7 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
               cut[a].value[family] == std::floor(cut[a].value[family]))
             c = {family, static_cast<int>(cut[a].value[family])};
       }
-      points.push_back(a);
+      points.push_back(canonical[a]);
       carriers.push_back(c);
     }
     if (points.size() < 3) continue;
@@ -935,6 +1059,108 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
     for (const int v : face) handles.push_back(VertexHandle(v));
     if (!mesh.add_face(handles).is_valid()) ++out->stats.rejected_faces;
   }
+  return Status::Ok();
+}
+
+Status CheckFinite(const std::vector<double>& phi, const std::vector<double>& psi) {
+  for (size_t v = 0; v < phi.size(); ++v)
+    if (!std::isfinite(phi[v]) || !std::isfinite(psi[v]) || std::abs(phi[v]) > 1e6 || std::abs(psi[v]) > 1e6)
+      return Status::InvalidInput("extract: φ or ψ is not finite (or absurdly large) at vertex " + std::to_string(v));
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
+                       double corner_angle_deg, double min_edge_length, ExtractedMesh* out,
+                       bool pair_boundary_triangles) {
+  const int nv = surface.num_vertices();
+  if (static_cast<int>(phi.size()) != nv || static_cast<int>(psi.size()) != nv)
+    return Status::InvalidInput("extract: φ and ψ need one value per reference vertex (" + std::to_string(nv) + ")");
+  PQ_RETURN_IF_ERROR(CheckFinite(phi, psi));
+  SurfaceInfo info;
+  info.corners = surface.BoundaryCorners(corner_angle_deg * M_PI / 180.0);
+  info.vertex_on_boundary.resize(nv);
+  for (int v = 0; v < nv; ++v) info.vertex_on_boundary[v] = surface.is_boundary(v);
+  info.edge_on_boundary.resize(surface.mesh().n_edges());
+  for (const auto e : surface.mesh().edges()) info.edge_on_boundary[e.idx()] = surface.mesh().is_boundary(e);
+  return Extract(surface, info, phi, psi, min_edge_length, out, pair_boundary_triangles);
+}
+
+Status ExtractQuadMesh(const SurfaceModel& surface, const SeamTransitions& seams, const std::vector<double>& phi_cut,
+                       const std::vector<double>& psi_cut, double corner_angle_deg, double min_edge_length,
+                       ExtractedMesh* out, bool pair_boundary_triangles) {
+  if (seams.cut == nullptr) return Status::InvalidInput("extract: seam transitions without a seam cut");
+  const SeamCut& seam_cut = *seams.cut;
+  const SurfaceModel& cut = seam_cut.cut();
+  const int paths = seam_cut.num_paths();
+  if (static_cast<int>(seams.sign.size()) != paths || static_cast<int>(seams.phi_offset.size()) != paths ||
+      static_cast<int>(seams.psi_offset.size()) != paths)
+    return Status::InvalidInput("extract: seam transitions need one sign and offset per seam path (" +
+                                std::to_string(paths) + ")");
+  for (int p = 0; p < paths; ++p)
+    if ((seams.sign[p] != 1 && seams.sign[p] != -1) || std::abs(seams.phi_offset[p]) > 1000000 ||
+        std::abs(seams.psi_offset[p]) > 1000000)
+      return Status::InvalidInput("extract: seam path " + std::to_string(p) + ": sign must be ±1 (offsets bounded)");
+  if (cut.num_faces() != surface.num_faces())
+    return Status::InvalidInput("extract: the seam cut has " + std::to_string(cut.num_faces()) +
+                                " faces, the surface " + std::to_string(surface.num_faces()));
+  for (int f = 0; f < cut.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (seam_cut.original_vertex(cut.face_vertices(f)[k]) != surface.face_vertices(f)[k])
+        return Status::InvalidInput("extract: the seam cut is not a cut of this surface (face " + std::to_string(f) + ")");
+  const int nv = cut.num_vertices();
+  if (static_cast<int>(phi_cut.size()) != nv || static_cast<int>(psi_cut.size()) != nv)
+    return Status::InvalidInput("extract: φ and ψ need one value per vertex of the cut surface (" +
+                                std::to_string(nv) + ")");
+  PQ_RETURN_IF_ERROR(CheckFinite(phi_cut, psi_cut));
+
+  // The transitions made exact: values within kSnap of a level snap to it on both sides (so
+  // both sides take the same tie decisions), then the plus copy takes s·u₋ + offset and a
+  // single-copy tip the fixed point offset / 2 of u ↦ −u + offset.
+  std::vector<double> values[2] = {phi_cut, psi_cut};
+  double mismatch = 0.0;
+  for (const SeamCopyPair& pair : seam_cut.copy_pairs()) {
+    const int sign = seams.sign[pair.path];
+    const int offset[2] = {seams.phi_offset[pair.path], seams.psi_offset[pair.path]};
+    for (const int family : {kPhi, kPsi}) {
+      std::vector<double>& u = values[family];
+      u[pair.minus] = Snap(u[pair.minus]);
+      double exact;
+      if (pair.minus != pair.plus) {
+        exact = sign * u[pair.minus] + offset[family];
+      } else if (sign < 0) {
+        exact = 0.5 * offset[family];
+      } else {
+        exact = offset[family] == 0 ? u[pair.minus] : INFINITY;  // no fixed point
+      }
+      const double error = std::abs(u[pair.plus] - exact);
+      if (!(error <= kSeamTransitionTolerance * std::max(1.0, std::abs(exact))))
+        return Status::InvalidInput("extract: seam path " + std::to_string(pair.path) + ": " +
+                                    (family == kPhi ? "φ" : "ψ") + " at vertex " +
+                                    std::to_string(pair.original_vertex) + " violates the transition u+ = " +
+                                    std::to_string(sign) + "·u- + " + std::to_string(offset[family]) + " by " +
+                                    std::to_string(error) + " levels");
+      mismatch = std::max(mismatch, error);
+      u[pair.plus] = Snap(exact);
+    }
+  }
+  SurfaceInfo info;
+  info.seams = &seam_cut;
+  info.transitions = &seams;
+  std::vector<char> is_corner(surface.num_vertices(), 0);
+  for (const int v : surface.BoundaryCorners(corner_angle_deg * M_PI / 180.0)) is_corner[v] = 1;
+  info.vertex_on_boundary.resize(nv);
+  for (int v = 0; v < nv; ++v) {
+    const int original = seam_cut.original_vertex(v);
+    info.vertex_on_boundary[v] = surface.is_boundary(original);
+    if (is_corner[original]) info.corners.push_back(v);
+  }
+  info.edge_on_boundary.resize(cut.mesh().n_edges());
+  for (const auto e : cut.mesh().edges())
+    info.edge_on_boundary[e.idx()] = cut.mesh().is_boundary(e) && !seam_cut.is_seam_edge(e.idx());
+  PQ_RETURN_IF_ERROR(Extract(cut, info, values[kPhi], values[kPsi], min_edge_length, out, pair_boundary_triangles));
+  out->stats.seam_transition_mismatch = mismatch;
   return Status::Ok();
 }
 

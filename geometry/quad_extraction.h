@@ -22,6 +22,17 @@
 //
 // Where a region of one label is not a disc (it surrounds a hole of the surface or an
 // island of another cell) it cannot be one polygon: it is left out and counted.
+//
+// Seams (geometry/seams.h). With a SeamCut, φ and ψ are given per vertex of the cut surface
+// and jump across every seam path p: u₊ = s_p·u₋ + a_p (φ) or + b_p (ψ). The triangles of the
+// cut surface are cut as above, then the two sides of every seam are identified
+// symbolically ("cut, then identify"): a vertex copy with its twin copy, the point (minus
+// edge, family, level L) with (plus edge, family, s·L + offset); pieces are joined across a
+// seam edge when their labels correspond under the transition ((i, j) ↔ (i + a, j + b) for
+// s = +1, (a − i − 1, b − j − 1) for s = −1). Everything after that (loops, output points,
+// collapses, boundary fixes, splits) sees one seamless polygon mesh; seam edges never count
+// as reference boundary. At the tip of a seam with s = −1 (a ±½ singularity) the mesh gets
+// an irregular vertex or cell (a branch point).
 #pragma once
 
 #include <map>
@@ -30,6 +41,7 @@
 #include <Eigen/Core>
 
 #include "geometry/mesh.h"
+#include "geometry/seams.h"
 #include "geometry/status.h"
 #include "geometry/surface_model.h"
 
@@ -56,6 +68,10 @@ struct ExtractionStats {
   int split_boundary_polygons = 0;       // boundary 6- to 10-gons cut into quads (and a triangle)
   int refined_boundary_edges = 0;        // boundary vertices inserted where a chord left a curved boundary
   int slid_boundary_vertices = 0;        // boundary vertices moved along the boundary to even out chords
+  // Seams: piece edges on a seam with no piece of the corresponding cell on the other side
+  // (0 when the values satisfy the transitions; otherwise the mesh has a slit there).
+  int unmatched_seam_edges = 0;
+  double seam_transition_mismatch = 0.0;  // max |u₊ − (s·u₋ + offset)| over seam vertex copies (levels)
 };
 
 struct ExtractedMesh {
@@ -75,6 +91,28 @@ struct ExtractedMesh {
 Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
                        double corner_angle_deg, double min_edge_length, ExtractedMesh* out,
                        bool pair_boundary_triangles = true);
+
+// Transitions across the seams of `cut`, per path p: u₊ = sign[p]·u₋ + offset[p] with u = φ
+// (phi_offset) or ψ (psi_offset), "minus" the side of SeamEdge::minus_face. sign ±1 (shared
+// by φ and ψ), offsets whole numbers of levels.
+struct SeamTransitions {
+  const SeamCut* cut = nullptr;
+  std::vector<int> sign;
+  std::vector<int> phi_offset, psi_offset;
+};
+
+// The same on a surface cut open along seams. surface: the original (uncut) reference
+// surface, whose faces the cut shares; phi_cut, psi_cut: one value per vertex of
+// seams.cut->cut(). The values must satisfy the transitions within
+// kSeamTransitionTolerance (relative, in levels): they are then made to satisfy them
+// exactly (the plus copy takes s·u₋ + offset; a single-copy tip of a sign −1 seam takes
+// offset / 2). Output origins refer to `surface`'s faces (the cut's faces have the same
+// indices and corner order). InvalidInput on size mismatch, non-finite values, a bad
+// transition or values that violate one.
+Status ExtractQuadMesh(const SurfaceModel& surface, const SeamTransitions& seams, const std::vector<double>& phi_cut,
+                       const std::vector<double>& psi_cut, double corner_angle_deg, double min_edge_length,
+                       ExtractedMesh* out, bool pair_boundary_triangles = true);
+constexpr double kSeamTransitionTolerance = 1e-6;
 
 // What the stage reports about an extracted mesh (lengths in metres).
 struct ExtractedMeshMetrics {

@@ -9,19 +9,8 @@
 
 namespace pqlayout {
 namespace {
+using testing::ClosestInterior;
 using testing::GeneratedMesh;
-
-// The interior vertex closest to p (xy).
-int ClosestInterior(const SurfaceModel& s, double x, double y) {
-  int best = -1;
-  double best_d = INFINITY;
-  for (int v = 0; v < s.num_vertices(); ++v) {
-    if (s.is_boundary(v)) continue;
-    const double d = std::hypot(s.position(v).x() - x, s.position(v).y() - y);
-    if (d < best_d) best_d = d, best = v;
-  }
-  return best;
-}
 
 TEST(Seams, AnnulusIsCutIntoADiscAlongOnePath) {
   const SurfaceModel s(GeneratedMesh("annulus", 20.0, 8.0, 0.0, 1.0));

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -12,6 +13,7 @@
 #include "geometry/mesh.h"
 #include "geometry/mesh_io.h"
 #include "geometry/surface_generators.h"
+#include "geometry/surface_model.h"
 
 namespace pqlayout::testing {
 
@@ -81,6 +83,18 @@ inline std::string ObjText(const PolygonSoup& soup) {
     s << "\n";
   }
   return s.str();
+}
+
+// The interior vertex of s closest to (x, y) in the xy-plane.
+inline int ClosestInterior(const SurfaceModel& s, double x, double y) {
+  int best = -1;
+  double best_d = INFINITY;
+  for (int v = 0; v < s.num_vertices(); ++v) {
+    if (s.is_boundary(v)) continue;
+    const double d = std::hypot(s.position(v).x() - x, s.position(v).y() - y);
+    if (d < best_d) best_d = d, best = v;
+  }
+  return best;
 }
 
 }  // namespace pqlayout::testing
