@@ -6,6 +6,7 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "geometry/boundary_refinement.h"
 #include "geometry/mesh_io.h"
@@ -71,6 +72,8 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"slid_boundary_vertices", stats.slid_boundary_vertices},
           {"dropped_boundary_vertices", stats.dropped_boundary_vertices},
           {"regions_with_holes", stats.regions_with_holes},
+          {"unmatched_seam_edges", stats.unmatched_seam_edges},
+          {"seam_transition_mismatch", stats.seam_transition_mismatch},
           {"rejected_faces", stats.rejected_faces}};
 }
 
@@ -81,8 +84,19 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   const ExtractOptions& options = state->config.extract;
   const double h = state->config.layout.spacing;
   ExtractedMesh& quads = state->quads;
-  PQ_RETURN_IF_ERROR(ExtractQuadMesh(surface, state->levelsets.phi, state->levelsets.psi, options.corner_angle,
-                                     options.min_edge * h, &quads));
+  const LevelSetSolution& levelsets = state->levelsets;
+  if (levelsets.seams.cut) {  // a branched layout: φ, ψ per vertex of the cut surface
+    SeamTransitions seams;
+    seams.cut = levelsets.seams.cut.get();
+    seams.sign = levelsets.seams.sign;
+    for (const double a : levelsets.seams.phi_offset) seams.phi_offset.push_back(static_cast<int>(std::lround(a)));
+    for (const double b : levelsets.seams.psi_offset) seams.psi_offset.push_back(static_cast<int>(std::lround(b)));
+    PQ_RETURN_IF_ERROR(ExtractQuadMesh(surface, seams, levelsets.phi_cut, levelsets.psi_cut, options.corner_angle,
+                                       options.min_edge * h, &quads));
+  } else {
+    PQ_RETURN_IF_ERROR(ExtractQuadMesh(surface, levelsets.phi, levelsets.psi, options.corner_angle,
+                                       options.min_edge * h, &quads));
+  }
   RefineBoundaryChords(surface, options.boundary_tolerance * h, kBoundarySlide * h,
                        options.min_edge * h, &quads);
   if (quads.mesh.n_faces() == 0)

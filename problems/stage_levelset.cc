@@ -210,13 +210,25 @@ Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std:
   return Status::Ok();
 }
 
+// Offsets to whole levels; odd ones across sign −1 seams, so that the branch point (u = a/2
+// there) lies half a level from every φ and ψ line, in the middle of a cell: that cell is a
+// hexagon (the cone angle there is 3π), which extraction cuts into two quads, leaving two
+// vertices where five quads meet. With even offsets the lines would run through the branch
+// point, where P1 level lines of a cone point crowd and cross at small angles.
+void RoundOffsets(const LevelSetSeams& seams, std::vector<double>* offsets) {
+  for (size_t p = 0; p < offsets->size(); ++p) {
+    double& a = (*offsets)[p];
+    a = seams.sign[p] < 0 ? 2.0 * std::round((a - 1.0) / 2.0) + 1.0 : std::round(a);
+  }
+}
+
 // With seams: PoissonFit with free offsets, the offsets rounded to whole levels, then again
 // with them fixed (QuadCover's rounding, in one step: the seams are few and far apart).
 Status SeamedPoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target,
                         const std::vector<double>& omega, double h, int family, LevelSetSeams* seams,
                         std::vector<double>* u) {
   PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, omega, u, seams, family, true, h));
-  for (double& a : family == 0 ? seams->phi_offset : seams->psi_offset) a = std::round(a);
+  RoundOffsets(*seams, family == 0 ? &seams->phi_offset : &seams->psi_offset);
   return PoissonFit(s, geo, target, omega, u, seams, family, false, h);
 }
 
@@ -939,7 +951,8 @@ Status ScaleLevelSets(double factor, double h, LevelSetSolution* solution) {
     std::vector<double>& offsets = family == 0 ? seams.phi_offset : seams.psi_offset;
     std::vector<Eigen::Vector3d> target(s.num_faces());
     for (int f = 0; f < s.num_faces(); ++f) target[f] = factor * Gradient(geo, s, f, u);
-    for (double& a : offsets) a = std::round(factor * a);
+    for (double& a : offsets) a *= factor;
+    RoundOffsets(seams, &offsets);
     PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, std::vector<double>(s.num_faces(), 1.0), &u, &seams, family, false, h));
     ProjectTransitions(seams, offsets, &u);
   }
