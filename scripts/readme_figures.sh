@@ -18,9 +18,10 @@ png() {  # SVG → PNG of the given width, colours quantised to keep the file sm
   pngquant --quality=70-90 --speed 1 -f -o "$3" "$3"
 }
 build/cli/pqlayout run examples/great_court.yaml --out out/readme -q
-build/cli/pqlayout run examples/great_court.yaml --out out/readme_curvature --until guidance -q --set guidance.source=curvature
+build/cli/pqlayout run examples/great_court.yaml --out out/readme_curvature --until extract -q --set guidance.source=curvature
 for f in displacement guidance levelsets; do png out/readme/figures/$f.svg 700 docs/figures/$f.png; done
 png out/readme_curvature/figures/guidance.svg 700 docs/figures/guidance_curvature.png
+png out/readme_curvature/figures/levelsets.svg 700 docs/figures/levelsets_curvature.png
 for f in planarity_initial planarity shell_3d; do png out/readme/figures/$f.svg 600 docs/figures/$f.png; done
 SCREENSHOT_SCALE=0.5 bash scripts/check_report.sh out/readme/report.html docs/figures/report_screenshot.png
 pngquant --quality=60-85 --speed 1 -f -o docs/figures/report_screenshot.png docs/figures/report_screenshot.png
