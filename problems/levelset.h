@@ -7,6 +7,10 @@
 // Every term is a Ceres autodiff residual block (problems/residuals/*.h); weights are
 // levelset.weights.<term>. Initial guess: a Poisson solve (CHOLMOD) for φ towards the
 // consistently oriented field n × d / h, then one for ψ towards the conjugate direction.
+// Seams (levelset.seams, geometry/seams.h): where the guidance has ±½ singularities or the
+// surface has holes that a single-valued φ could only follow with a band of misaligned lines,
+// the surface is cut open and φ, ψ jump across the cuts by whole levels (u₊ = s·u₋ + a), so the
+// layout gets branch points like the paper's curvature reference.
 // Solves: φ alone, ψ with φ held, both together, then up to levelset.crossing_rounds local
 // re-solves with the transversality weight raised on the faces still crossing below
 // levelset.min_angle (the hinge is a penalty and loses a few percent of faces otherwise).
