@@ -54,6 +54,7 @@ struct LevelSetSeams {
   std::vector<int> tips;                    // original vertices where a seam ends inside (branch points)
   int cancelled_pairs = 0;                  // ±½ singularity pairs closer than the cancel distance (no seam)
   int light_paths = 0;                      // routes with too little weighted length to be worth a seam
+  int orientable_tips = 0;                  // singularities the guidance does not flip around on the cut surface
   nlohmann::json ToJson() const;
 };
 

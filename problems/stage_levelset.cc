@@ -851,15 +851,32 @@ Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const Level
     if (PathWeight(s, g.weight, path) >= kMinSeamWeight * h) paths.push_back(std::move(path));
     else ++seams.light_paths;
   }
-  if (paths.empty()) return SolveOnMesh(s, g, options, h, nullptr, solution);
   std::unique_ptr<SeamCut> cut;
-  PQ_RETURN_IF_ERROR(SeamCut::Build(s, paths, &cut).WithContext("levelset seams"));
+  if (!paths.empty()) {
+    // A seam from a singularity must flip the orientation (sign −1). If the guidance on the
+    // cut surface says otherwise, the "singularity" was a wrinkle that a nearby uncancelled
+    // one undoes (e.g. where two principal directions swap roles): no seam there.
+    PQ_RETURN_IF_ERROR(SeamCut::Build(s, paths, &cut).WithContext("levelset seams"));
+    const std::vector<int> sign = SeamSigns(*cut, OrientedCrossField(cut->cut(), g));
+    std::vector<std::vector<int>> kept;
+    for (size_t p = 0; p < paths.size(); ++p) {
+      if (s.is_boundary(paths[p].front()) || sign[p] < 0) kept.push_back(paths[p]);
+      else ++seams.orientable_tips;
+    }
+    if (kept.size() < paths.size()) {
+      paths = std::move(kept);
+      cut.reset();
+      if (!paths.empty()) PQ_RETURN_IF_ERROR(SeamCut::Build(s, paths, &cut).WithContext("levelset seams"));
+    }
+  }
+  if (paths.empty()) return SolveOnMesh(s, g, options, h, nullptr, solution);
   for (const auto& path : paths)
     if (!s.is_boundary(path.front())) seams.tips.push_back(path.front());
   seams.cut = std::move(cut);
   LOG(INFO) << "levelset: " << paths.size() << " seams: " << seams.tips.size() << " from guidance singularities, "
             << paths.size() - seams.tips.size() << " joining holes to the outer boundary (" << seams.cancelled_pairs
-            << " close ± singularity pairs and " << seams.light_paths << " routes through weak guidance left uncut)";
+            << " close ± singularity pairs, " << seams.light_paths << " routes through weak guidance and "
+            << seams.orientable_tips << " tips the guidance does not flip around left uncut)";
   PQ_RETURN_IF_ERROR(SolveOnMesh(seams.cut->cut(), g, options, h, &seams, solution));
   solution->phi_cut = std::move(solution->phi);
   solution->psi_cut = std::move(solution->psi);
@@ -876,13 +893,14 @@ nlohmann::json LevelSetSeams::ToJson() const {
     for (int p = 0; p < cut->num_paths(); ++p)
       paths.push_back({{"vertices", cut->path(p).size()},
                        {"sign", sign[p]},
-                       {"phi_offset", phi_offset[p]},
-                       {"psi_offset", psi_offset[p]},
+                       {"phi_offset", static_cast<long>(phi_offset[p])},
+                       {"psi_offset", static_cast<long>(psi_offset[p])},
                        {"branch_point", std::find(tips.begin(), tips.end(), cut->path(p).front()) != tips.end()}});
   return {{"count", paths.size()},
           {"branch_points", tips.size()},
           {"cancelled_singularity_pairs", cancelled_pairs},
           {"uncut_weak_routes", light_paths},
+          {"uncut_orientable_tips", orientable_tips},
           {"paths", paths}};
 }
 
