@@ -7,6 +7,7 @@
 #include "geometry/differential_operators.h"
 #include "geometry/surface_generators.h"
 #include "problems/levelset.h"
+#include "tests/test_meshes.h"
 
 namespace pqlayout {
 namespace {
@@ -161,15 +162,15 @@ TEST(LevelSets, CrossingRoundsLiftEveryFaceToTheMinimumAngle) {
 namespace pqlayout {
 namespace {
 
-TriMesh Generated(const std::string& name, double width, double depth, double edge) {
-  GeneratorParams p;
-  p.name = name;
-  p.width = width;
-  p.depth = depth;
-  p.edge_length = edge;
-  TriMesh mesh;
-  EXPECT_TRUE(GenerateSurface(p, &mesh).ok());
-  return mesh;
+// The level sets with seams (default) and with levelset.seams: false, solved on `s` itself
+// (seams are not cut on a remeshed working mesh).
+void SolveWithAndWithoutSeams(const SurfaceModel& s, const GuidanceField& g, double h, LevelSetSolution* seamed,
+                              LevelSetSolution* single) {
+  LevelsetOptions options;
+  options.working_edge = 0.3;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, h, seamed).ok());
+  options.seams = false;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, h, single).ok());
 }
 
 // Flat annulus (radii 4 and 10 m), guidance radial: φ's level lines must be rays, so φ grows
@@ -177,15 +178,11 @@ TriMesh Generated(const std::string& name, double width, double depth, double ed
 // one translation seam (sign +1) whose offset is the number of rays, and alignment ~0; without
 // it (levelset.seams: false) a single-valued φ must cross the rays somewhere.
 TEST(LevelSets, AnnulusWithRadialGuidanceNeedsATranslationSeam) {
-  const SurfaceModel s(Generated("annulus", 20.0, 8.0, 0.6));
+  const SurfaceModel s(testing::GeneratedMesh("annulus", 20.0, 8.0, 0.0, 0.6));
   const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d& c) { return Eigen::Vector3d(c.x(), c.y(), 0); });
   const double h = 1.5;
-  LevelsetOptions options;
-  options.working_edge = 0.3;  // solve on this mesh (seams are not cut on a remeshed copy)
   LevelSetSolution seamed, single;
-  ASSERT_TRUE(SolveLevelSets(s, g, options, h, &seamed).ok());
-  options.seams = false;
-  ASSERT_TRUE(SolveLevelSets(s, g, options, h, &single).ok());
+  SolveWithAndWithoutSeams(s, g, h, &seamed, &single);
   std::cout << "annulus: alignment " << seamed.metrics.alignment_rms_deg << "° with the seam, "
             << single.metrics.alignment_rms_deg << "° without; offset "
             << (seamed.seams.cut ? seamed.seams.phi_offset[0] : 0.0) << "\n";
@@ -211,18 +208,14 @@ TEST(LevelSets, AnnulusWithRadialGuidanceNeedsATranslationSeam) {
 // like the Great Court's umbilics): the field turns by −π once round, so φ must change sign
 // across a seam from the singularity to the boundary (sign −1), with a branch point there.
 TEST(LevelSets, TrisectorNeedsASignFlipSeamWithABranchPoint) {
-  const SurfaceModel s(Generated("disk", 24.0, 0.0, 0.6));
+  const SurfaceModel s(testing::GeneratedMesh("disk", 24.0, 0.0, 0.0, 0.6));
   const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d& c) {
     const double a = -0.5 * std::atan2(c.y(), c.x());
     return Eigen::Vector3d(std::cos(a), std::sin(a), 0);
   });
   const double h = 1.5;
-  LevelsetOptions options;
-  options.working_edge = 0.3;  // solve on this mesh (seams are not cut on a remeshed copy)
   LevelSetSolution seamed, single;
-  ASSERT_TRUE(SolveLevelSets(s, g, options, h, &seamed).ok());
-  options.seams = false;
-  ASSERT_TRUE(SolveLevelSets(s, g, options, h, &single).ok());
+  SolveWithAndWithoutSeams(s, g, h, &seamed, &single);
   std::cout << "trisector: alignment " << seamed.metrics.alignment_rms_deg << "° with the seam, "
             << single.metrics.alignment_rms_deg << "° without; CV φ " << seamed.metrics.spacing_cv_phi
             << ", min crossing " << seamed.metrics.min_crossing_angle_deg << "°\n";
