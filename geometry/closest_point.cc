@@ -90,4 +90,14 @@ SurfacePoint ClosestPointQuery::OnBoundary(const Eigen::Vector3d& p, int hint) c
   return out;
 }
 
+Eigen::Vector3d TriangleBarycentric(const SurfaceModel& s, int face, const Eigen::Vector3d& p) {
+  const auto ids = s.face_vertices(face);
+  const Eigen::Vector3d a = s.position(ids[0]), b = s.position(ids[1]), c = s.position(ids[2]);
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  const double area2 = n.squaredNorm();
+  if (!(area2 > 0.0)) return Eigen::Vector3d(1.0, 0.0, 0.0);
+  return Eigen::Vector3d((c - b).cross(p - b).dot(n), (a - c).cross(p - c).dot(n), (b - a).cross(p - a).dot(n)) /
+         area2;
+}
+
 }  // namespace pqlayout

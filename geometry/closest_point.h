@@ -22,6 +22,11 @@ struct SurfacePoint {
   double distance = 0.0;
 };
 
+// Barycentric coordinates of p's projection onto the plane of triangle `face` of s, in the
+// order of face_vertices; not clamped, so that outside the triangle a P1 function extends
+// linearly. (1, 0, 0) for a degenerate triangle.
+Eigen::Vector3d TriangleBarycentric(const SurfaceModel& s, int face, const Eigen::Vector3d& p);
+
 class ClosestPointQuery {
  public:
   explicit ClosestPointQuery(const SurfaceModel& surface);

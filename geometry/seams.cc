@@ -228,6 +228,7 @@ Status SeamCut::Build(const SurfaceModel& surface, std::vector<std::vector<int>>
       if (pairs.insert({v, minus, plus}).second) cut->copy_pairs_.push_back({p, v, minus, plus});
     }
   }
+  for (const auto& path : paths) cut->starts_inside_.push_back(!surface.is_boundary(path.front()));
   cut->paths_ = std::move(paths);
   *out = std::move(cut);
   return Status::Ok();

@@ -71,6 +71,10 @@ class SeamCut {
   const SurfaceModel& cut() const { return *cut_; }
   int num_paths() const { return static_cast<int>(paths_.size()); }
   const std::vector<int>& path(int p) const { return paths_[p]; }
+  // Whether path p starts at an interior tip (a branch point) rather than on the boundary.
+  bool starts_inside(int p) const { return starts_inside_[p]; }
+  // Where vertex v of the original surface is (its first copy's position).
+  Eigen::Vector3d position(int original_vertex) const { return cut_->position(first_copy_[original_vertex]); }
   int original_vertex(int cut_vertex) const { return original_vertex_[cut_vertex]; }
   // The seam path a cut edge lies on, or −1.
   int seam_path_of_cut_edge(int cut_edge) const { return seam_of_cut_edge_[cut_edge]; }
@@ -85,6 +89,7 @@ class SeamCut {
  private:
   std::unique_ptr<SurfaceModel> cut_;
   std::vector<std::vector<int>> paths_;
+  std::vector<char> starts_inside_;
   std::vector<int> original_vertex_;
   std::vector<int> first_copy_;
   std::vector<int> seam_of_cut_edge_;

@@ -355,9 +355,9 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
     Rings paths;
     for (int p = 0; p < seams->num_paths(); ++p) {
       std::vector<Vector2d> xy;
-      for (const int v : seams->path(p)) xy.push_back(surface.position(v).head<2>());
+      for (const int v : seams->path(p)) xy.push_back(seams->position(v).head<2>());
       paths.push_back(std::move(xy));
-      if (!surface.is_boundary(seams->path(p).front())) canvas.Circle(paths.back().front(), 4.0, kSeamLine.colour);
+      if (seams->starts_inside(p)) canvas.Circle(paths.back().front(), 4.0, kSeamLine.colour);
     }
     canvas.Polylines(paths, kSeamLine);
     legend.push_back({kSeamLine.colour.Hex(), "seams (level lines continue across; dots: branch points)"});

@@ -45,14 +45,18 @@ struct LevelSetMetrics {
 };
 
 // Seams of the layout (geometry/seams.h): the surface cut open from every guidance
-// singularity of index ±½ that no nearby opposite one cancels to the boundary, and from every
+// singularity of index ±½ that has no other one nearby, to the boundary, and from every
 // hole to the outer boundary; across path p, u₊ = sign[p]·u₋ + offset[p] (whole levels).
 struct LevelSetSeams {
   std::shared_ptr<const SeamCut> cut;
+  // The surface `cut` cuts: null for the reference itself, else the remeshed working mesh
+  // the level sets were solved on (then phi_cut / psi_cut live on its cut, and extraction
+  // runs there too; φ, ψ per reference vertex are interpolated for the field files only).
+  std::shared_ptr<const SurfaceModel> working;
   std::vector<int> sign;                    // per path, shared by φ and ψ
   std::vector<double> phi_offset, psi_offset;  // per path, integers
   std::vector<int> tips;                    // original vertices where a seam ends inside (branch points)
-  int cancelled_pairs = 0;                  // ±½ singularity pairs closer than the cancel distance (no seam)
+  int cancelled_pairs = 0;                  // pairs of ±½ singularities closer than the cancel distance (no seam)
   int light_paths = 0;                      // routes with too little weighted length to be worth a seam
   int orientable_tips = 0;                  // singularities the guidance does not flip around on the cut surface
   nlohmann::json ToJson() const;

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "geometry/boundary_refinement.h"
+#include "geometry/closest_point.h"
 #include "geometry/mesh_io.h"
 #include "geometry/planarity.h"
 #include "geometry/quad_extraction.h"
@@ -77,6 +78,23 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"rejected_faces", stats.rejected_faces}};
 }
 
+// A mesh extracted on the level-set stage's working mesh (seams on a remeshed reference):
+// every vertex moved to the closest point of the reference (boundary vertices: of its
+// boundary) and its origin re-expressed in the reference's triangles, as if extracted there.
+void OnReference(const SurfaceModel& reference, ExtractedMesh* quads) {
+  const ClosestPointQuery query(reference);
+  for (const auto v : quads->mesh.vertices()) {
+    QuadMeshVertex& origin = quads->origin[v.idx()];
+    Eigen::Vector3d p = ToEigen(quads->mesh.point(v));
+    if (origin.on_boundary && !origin.corner) p = query.OnBoundary(p).point;
+    const SurfacePoint q = query.OnSurface(p);
+    if (!origin.on_boundary) p = q.point;
+    quads->mesh.set_point(v, ToOpenMesh(p));
+    origin.face = q.element;
+    origin.barycentric = TriangleBarycentric(reference, q.element, p);
+  }
+}
+
 }  // namespace
 
 Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
@@ -91,8 +109,10 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
     seams.sign = levelsets.seams.sign;
     for (const double a : levelsets.seams.phi_offset) seams.phi_offset.push_back(static_cast<int>(std::lround(a)));
     for (const double b : levelsets.seams.psi_offset) seams.psi_offset.push_back(static_cast<int>(std::lround(b)));
-    PQ_RETURN_IF_ERROR(ExtractQuadMesh(surface, seams, levelsets.phi_cut, levelsets.psi_cut, options.corner_angle,
+    const SurfaceModel& cut_surface = levelsets.seams.working ? *levelsets.seams.working : surface;
+    PQ_RETURN_IF_ERROR(ExtractQuadMesh(cut_surface, seams, levelsets.phi_cut, levelsets.psi_cut, options.corner_angle,
                                        options.min_edge * h, &quads));
+    if (levelsets.seams.working) OnReference(surface, &quads);
   } else {
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(surface, levelsets.phi, levelsets.psi, options.corner_angle,
                                        options.min_edge * h, &quads));

@@ -766,18 +766,6 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   return Status::Ok();
 }
 
-// Barycentric coordinates of p's projection onto the plane of triangle f of s, in the order of
-// face_vertices; not clamped, so that outside the triangle a P1 function extends linearly.
-Eigen::Vector3d Barycentric(const SurfaceModel& s, int f, const Eigen::Vector3d& p) {
-  const auto ids = s.face_vertices(f);
-  const Eigen::Vector3d a = s.position(ids[0]), b = s.position(ids[1]), c = s.position(ids[2]);
-  const Eigen::Vector3d n = (b - a).cross(c - a);
-  const double area2 = n.squaredNorm();
-  if (!(area2 > 0.0)) return Eigen::Vector3d(1.0, 0.0, 0.0);
-  return Eigen::Vector3d((c - b).cross(p - b).dot(n), (a - c).cross(p - c).dot(n), (b - a).cross(p - a).dot(n)) /
-         area2;
-}
-
 // The guidance on the working mesh: each working face takes the direction (projected into
 // its plane) and weight of the reference face closest to its centroid.
 GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceField& g, const SurfaceModel& working) {
@@ -805,12 +793,14 @@ constexpr double kWorkingCornerAngle = 30.0;  // corners the working mesh keeps 
 constexpr double kReuseReference = 0.7;       // solve on the reference if its mean edge ≥ this × working edge
 constexpr double kDefaultWorkingEdge = 0.4;   // × h: CGAL lands near 12k triangles on the Great Court at h = 3 m
 constexpr int kRemeshIterations = 3;
-constexpr double kCancelDistance = 2.0;  // × h: ±½ singularities of opposite index closer than this get no seam
+constexpr double kCancelDistance = 2.0;  // × h: two ±½ singularities closer than this get no seam
 constexpr double kMinSeamWeight = 1.0;   // × h: a seam whose path has less weighted length is not cut
 
-// The tips of the seams: the guidance's singularities of index ±½, less the pairs of
-// opposite index closer than kCancelDistance·h, closest first (a wrinkle of the field that
-// a single-valued φ rides out; a seam there would only add two branch points).
+// The tips of the seams: the guidance's singularities of index ±½, less the pairs closer
+// than kCancelDistance·h, closest first. Around such a pair the field turns by a whole turn
+// or none (opposite indices cancel: a wrinkle; equal ones make an index ±1, e.g. a centre
+// that the discrete field splits in two), so a single-valued φ can follow it there; two
+// seams would only add two branch points.
 std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double h, int* cancelled) {
   std::vector<LineFieldSingularity> half;
   for (const auto& x : FindLineFieldSingularities(s, g.direction))
@@ -819,7 +809,7 @@ std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double 
   for (size_t i = 0; i < half.size(); ++i)
     for (size_t j = i + 1; j < half.size(); ++j) {
       const double d = (half[i].position - half[j].position).norm();
-      if (half[i].index * half[j].index < 0 && d < kCancelDistance * h) candidates.emplace_back(d, i, j);
+      if (d < kCancelDistance * h) candidates.emplace_back(d, i, j);
     }
   std::sort(candidates.begin(), candidates.end());
   std::vector<char> gone(half.size(), 0);
@@ -875,7 +865,7 @@ Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const Level
   seams.cut = std::move(cut);
   LOG(INFO) << "levelset: " << paths.size() << " seams: " << seams.tips.size() << " from guidance singularities, "
             << paths.size() - seams.tips.size() << " joining holes to the outer boundary (" << seams.cancelled_pairs
-            << " close ± singularity pairs, " << seams.light_paths << " routes through weak guidance and "
+            << " close singularity pairs, " << seams.light_paths << " routes through weak guidance and "
             << seams.orientable_tips << " tips the guidance does not flip around left uncut)";
   PQ_RETURN_IF_ERROR(SolveOnMesh(seams.cut->cut(), g, options, h, &seams, solution));
   solution->phi_cut = std::move(solution->phi);
@@ -895,12 +885,13 @@ nlohmann::json LevelSetSeams::ToJson() const {
                        {"sign", sign[p]},
                        {"phi_offset", static_cast<long>(phi_offset[p])},
                        {"psi_offset", static_cast<long>(psi_offset[p])},
-                       {"branch_point", std::find(tips.begin(), tips.end(), cut->path(p).front()) != tips.end()}});
+                       {"branch_point", cut->starts_inside(p)}});
   return {{"count", paths.size()},
           {"branch_points", tips.size()},
           {"cancelled_singularity_pairs", cancelled_pairs},
           {"uncut_weak_routes", light_paths},
           {"uncut_orientable_tips", orientable_tips},
+          {"on_working_mesh", working != nullptr},
           {"paths", paths}};
 }
 
@@ -919,21 +910,22 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   TriMesh working_mesh;
   PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, kRemeshIterations, &working_mesh)
                          .WithContext("levelset working mesh"));
-  const SurfaceModel working(std::move(working_mesh));
+  auto working = std::make_shared<const SurfaceModel>(std::move(working_mesh));
   LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference << " × working edge "
-            << working_edge << " m: solving on a remeshed copy with " << working.num_faces() << " triangles";
+            << working_edge << " m: solving on a remeshed copy with " << working->num_faces() << " triangles";
   LevelSetSolution coarse;
-  // Decision: no seams on a working mesh (φ, ψ would have to be interpolated per chart); the
-  // layout is then single-valued, as with levelset.seams: false.
-  if (options.seams) LOG(INFO) << "levelset: no seams on a remeshed working mesh; φ, ψ single-valued";
-  PQ_RETURN_IF_ERROR(SolveOnMesh(working, TransferGuidance(s, g, working), options, h, nullptr, &coarse));
-  const ClosestPointQuery query(working);
+  // With seams the solution stays on the working mesh's cut surface (extraction runs there);
+  // the per-vertex φ, ψ interpolated below (first copies) are for the field files only.
+  const GuidanceField working_guidance = TransferGuidance(s, g, *working);
+  if (options.seams) PQ_RETURN_IF_ERROR(SolveWithSeams(*working, working_guidance, options, h, &coarse));
+  else PQ_RETURN_IF_ERROR(SolveOnMesh(*working, working_guidance, options, h, nullptr, &coarse));
+  const ClosestPointQuery query(*working);
   solution->phi.assign(s.num_vertices(), 0.0);
   solution->psi.assign(s.num_vertices(), 0.0);
   for (int v = 0; v < s.num_vertices(); ++v) {
     const SurfacePoint p = query.OnSurface(s.position(v));
-    const Eigen::Vector3d w = Barycentric(working, p.element, s.position(v));
-    const auto ids = working.face_vertices(p.element);
+    const Eigen::Vector3d w = TriangleBarycentric(*working, p.element, s.position(v));
+    const auto ids = working->face_vertices(p.element);
     for (int k = 0; k < 3; ++k) {
       solution->phi[v] += w[k] * coarse.phi[ids[k]];
       solution->psi[v] += w[k] * coarse.psi[ids[k]];
@@ -946,7 +938,13 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   solution->initial = coarse.initial;
   solution->metrics = coarse.metrics;
   solution->solver = coarse.solver;
-  solution->working_faces = working.num_faces();
+  solution->working_faces = working->num_faces();
+  if (coarse.seams.cut) {
+    solution->seams = std::move(coarse.seams);
+    solution->seams.working = working;
+    solution->phi_cut = std::move(coarse.phi_cut);
+    solution->psi_cut = std::move(coarse.psi_cut);
+  }
   return Status::Ok();
 }
 
