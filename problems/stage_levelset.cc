@@ -600,7 +600,8 @@ std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeo
 }
 
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
-// seams: null, or the seams s is the cut surface of (their signs and offsets are set here).
+// seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the
+// offsets are set here.
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
                    LevelSetSeams* seams, LevelSetSolution* solution) {
   const LevelSetGeometry geo = Precompute(s);
@@ -617,9 +618,9 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   for (int f = 0; f < s.num_faces(); ++f) omega[f] = std::max(g.weight[f], 0.05);
   std::vector<SeamEdgeTerm> seam_terms;
   if (seamed) {
-    // On the cut surface the oriented field has no hidden branch cut left: the Poisson fit
-    // with the seams' transitions is the guess (the eigenvector below is for a single-valued φ).
-    seams->sign = SeamSigns(*seams->cut, target);
+    // On the cut surface the oriented field (`target`, from which SolveWithSeams took the
+    // signs) has no hidden branch cut left: the Poisson fit with the seams' transitions is
+    // the guess (the eigenvector below is for a single-valued φ).
     seams->phi_offset.assign(seams->cut->num_paths(), 0.0);
     seams->psi_offset.assign(seams->cut->num_paths(), 0.0);
     seam_terms = SeamEdgeTerms(s, geo, *seams->cut);
@@ -847,16 +848,20 @@ Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const Level
     // cut surface says otherwise, the "singularity" was a wrinkle that a nearby uncancelled
     // one undoes (e.g. where two principal directions swap roles): no seam there.
     PQ_RETURN_IF_ERROR(SeamCut::Build(s, paths, &cut).WithContext("levelset seams"));
-    const std::vector<int> sign = SeamSigns(*cut, OrientedCrossField(cut->cut(), g));
+    seams.sign = SeamSigns(*cut, OrientedCrossField(cut->cut(), g));
     std::vector<std::vector<int>> kept;
     for (size_t p = 0; p < paths.size(); ++p) {
-      if (s.is_boundary(paths[p].front()) || sign[p] < 0) kept.push_back(paths[p]);
+      if (s.is_boundary(paths[p].front()) || seams.sign[p] < 0) kept.push_back(paths[p]);
       else ++seams.orientable_tips;
     }
     if (kept.size() < paths.size()) {
       paths = std::move(kept);
       cut.reset();
-      if (!paths.empty()) PQ_RETURN_IF_ERROR(SeamCut::Build(s, paths, &cut).WithContext("levelset seams"));
+      seams.sign.clear();
+      if (!paths.empty()) {
+        PQ_RETURN_IF_ERROR(SeamCut::Build(s, paths, &cut).WithContext("levelset seams"));
+        seams.sign = SeamSigns(*cut, OrientedCrossField(cut->cut(), g));
+      }
     }
   }
   if (paths.empty()) return SolveOnMesh(s, g, options, h, nullptr, solution);
