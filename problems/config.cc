@@ -296,6 +296,8 @@ void KeyTable::Rules(const std::string& key, std::vector<BoundaryRule>* f, const
 }
 
 KeyTable::KeyTable(Config* c) {
+  Integer("threads", &c->threads, 1, 256,
+          "threads of Ceres, OpenBLAS and OpenMP; 1 (default) gives bit-identical results on every machine, more may not");
   auto& s = c->surface;
   Path("surface.file", &s.file, "reference mesh (OBJ, PLY, OFF or STL; metres); relative paths are relative to the config file");
   Choice("surface.generator", &s.generator, {"", "great_court", "dome", "hypar", "barrel", "plane", "disk", "annulus"},

