@@ -1,7 +1,8 @@
 // pqlayout command line: `pqlayout run CONFIG [--set KEY=VALUE]... [--out DIR] [--until STAGE]`,
 // `compare`, `sweep`, `collect` and `keys` (the config reference). Exit codes: 0 success,
 // 2 bad input or config (one line on stderr naming the file, key or element), 1 internal
-// failure (sweep: 1 also when a run failed). Progress lines with elapsed time go to stdout.
+// failure (sweep: 1 also when a run failed), 130/143 after SIGINT/SIGTERM (run, compare and
+// sweep stop cleanly; see geometry/interrupt.h). Progress lines with elapsed time go to stdout.
 #include <CLI/CLI.hpp>
 #include <glog/logging.h>
 
@@ -12,6 +13,7 @@
 #include <new>
 
 #include "geometry/atomic_file.h"
+#include "geometry/interrupt.h"
 #include "problems/build_info.h"
 #include "problems/compare.h"
 #include "problems/config.h"
@@ -41,8 +43,14 @@ std::string VersionText() {
   return text;
 }
 
+// A command stopped by SIGINT/SIGTERM says so in one line and exits with 128 + the signal
+// (130, 143), whatever failure the interrupt caused on its way out (geometry/interrupt.h).
 int ExitCode(const Status& status) {
   if (status.ok()) return 0;
+  if (const int signal = pqlayout::InterruptSignal()) {
+    std::cerr << "pqlayout: interrupted" << std::endl;
+    return 128 + signal;
+  }
   std::cerr << "pqlayout: error: " << status.message() << std::endl;
   return static_cast<int>(status.code());
 }
@@ -55,9 +63,10 @@ struct RunArguments {
   std::string error_file;  // run: on failure the error line is also written here, on success removed
 };
 
-// `--error-file`: a failed run leaves its one-line error in a file (sweeps read it).
+// `--error-file`: a failed run leaves its one-line error in a file (sweeps read it). An
+// interrupted run did not fail: the file is left as it was, like the output folder.
 int RecordError(const std::string& error_file, int code, const Status& status) {
-  if (error_file.empty()) return code;
+  if (error_file.empty() || (!status.ok() && pqlayout::InterruptSignal())) return code;
   std::error_code ec;
   if (status.ok()) {
     std::filesystem::remove(error_file, ec);
@@ -69,6 +78,7 @@ int RecordError(const std::string& error_file, int code, const Status& status) {
 }
 
 int Run(const RunArguments& args, const std::string& command_line) {
+  pqlayout::InstallInterruptHandlers();
   pqlayout::Config config;
   const Status loaded = pqlayout::LoadConfig(args.config, args.sets, &config);
   if (!loaded.ok()) return RecordError(args.error_file, ExitCode(loaded), loaded);
@@ -118,6 +128,7 @@ int Sweep(SweepArguments args, const char* argv0) {
     return 0;
   }
   pqlayout::SweepSummary summary;
+  pqlayout::InstallInterruptHandlers();  // RunSweep forwards them to its runs
   if (int code = ExitCode(pqlayout::RunSweep(plan, ExecutableForRuns(argv0), args.jobs, &summary))) return code;
   if (summary.failed == 0) return 0;
   std::cerr << "pqlayout: error: " << summary.failed << " of " << summary.total
@@ -219,6 +230,7 @@ int Main(int argc, char** argv) {
                           ? "out/" + std::filesystem::path(compare_args.config).stem().string() + "-compare"
                           : compare_args.out;
     nlohmann::json comparison;
+    pqlayout::InstallInterruptHandlers();
     return ExitCode(pqlayout::RunCompare(options, &comparison));
   }
   return Run(run_args, command_line);

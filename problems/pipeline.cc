@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "geometry/interrupt.h"
 #include "problems/build_info.h"
 #include "problems/report_html.h"
 #include "problems/stages.h"
@@ -101,6 +102,7 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
   nlohmann::json completed = nlohmann::json::array();
   for (const auto& entry : kStages) {
     if (static_cast<int>(entry.stage) > static_cast<int>(options.until)) break;
+    PQ_RETURN_IF_ERROR(CheckInterrupt());  // SIGINT/SIGTERM: stop before the next stage
     LOG(INFO) << entry.name << ": started";
     const auto stage_start = std::chrono::steady_clock::now();
     nlohmann::json metrics = nlohmann::json::object();

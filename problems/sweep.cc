@@ -1,10 +1,5 @@
 #include "problems/sweep.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <glog/logging.h>
 
 #include <algorithm>
@@ -24,11 +19,11 @@
 #include <thread>
 
 #include "geometry/atomic_file.h"
+#include "geometry/interrupt.h"
+#include "problems/child_processes.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"
 #include "problems/sweep_figures.h"
-
-extern char** environ;
 
 namespace pqlayout {
 namespace {
@@ -207,46 +202,7 @@ std::vector<std::pair<std::string, json>> StageMetrics(const json& report) {
   return metrics;
 }
 
-// ---- child processes ----
-
-std::string DescribeExit(int status) {
-  if (WIFEXITED(status)) return "pqlayout run exited with code " + std::to_string(WEXITSTATUS(status));
-  if (WIFSIGNALED(status)) {
-    const int signal = WTERMSIG(status);
-    return "pqlayout run was killed by signal " + std::to_string(signal) + " (" + strsignal(signal) + ")";
-  }
-  return "pqlayout run ended abnormally";
-}
-
-// Runs argv with stdout and stderr into log_path; returns the wait status, or -1 if it
-// could not be started (*error says why).
-int RunChild(const std::string& executable, const std::vector<std::string>& args, const std::string& log_path,
-             std::string* error) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<std::string> all{executable};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid;
-  const int spawned = posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) {
-    *error = "cannot start " + executable + ": " + std::strerror(spawned);
-    return -1;
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      *error = std::string("waitpid: ") + std::strerror(errno);
-      return -1;
-    }
-  }
-  return status;
-}
+// ---- runs as commands and as child processes ----
 
 std::string ShellQuote(const std::string& arg) {
   const bool plain = !arg.empty() && std::all_of(arg.begin(), arg.end(), [](char c) {
@@ -256,17 +212,6 @@ std::string ShellQuote(const std::string& arg) {
   std::string quoted = "'";
   for (const char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return quoted + "'";
-}
-
-// A run killed while writing leaves its staging folder (.<name>.partial-<pid>, see
-// OutputFiles) beside its folder; the sweep that reruns it removes it.
-void RemoveStaleStaging(const fs::path& folder) {
-  const std::string prefix = "." + folder.filename().string() + ".partial-";
-  std::error_code ec;
-  std::vector<fs::path> stale;
-  for (const auto& entry : fs::directory_iterator(folder.parent_path(), ec))
-    if (entry.path().filename().string().rfind(prefix, 0) == 0) stale.push_back(entry.path());
-  for (const auto& path : stale) fs::remove_all(path, ec);
 }
 
 // Progress lines reach a log file (or a job scheduler's) as each run finishes, even if
@@ -281,6 +226,31 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 std::string RunLabel(const SweepRun& run) { return run.name; }
+
+// One run of the sweep as a child process. Returns kFinished; kFailed with the reason in
+// *run_error and in the run's error.txt (*written says whether that could be written); or
+// kPending if the sweep was interrupted before the run finished: an interrupted run is left
+// as it was, neither finished nor failed, and runs again when the sweep is resumed.
+RunState RunOne(const SweepPlan& plan, const SweepRun& run, const std::string& executable,
+                ChildProcesses* children, std::string* run_error, Status* written) {
+  const fs::path folder = RunFolder(plan, run);
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  std::string error;
+  const int status = children->Run(executable, RunArguments(plan, run), (folder / "run.log").string(), &error);
+  RunState state = InspectRun(plan, run, run_error);
+  if (state != RunState::kFinished && InterruptSignal() != 0) return RunState::kPending;
+  if (status == 0 && state != RunState::kFinished) {
+    *run_error = "pqlayout run succeeded but " + (folder / "report.json").string() + " does not hold this run";
+    state = RunState::kFailed;
+  } else if (status != 0 && state != RunState::kFailed) {
+    // No error.txt: the run could not start or was killed; record why.
+    *run_error = status < 0 ? error : DescribeExit(status);
+    state = RunState::kFailed;
+  }
+  if (state == RunState::kFailed) *written = WriteTextFileAtomically((folder / "error.txt").string(), *run_error + "\n");
+  return state;
+}
 
 // ---- the Pareto figure ----
 
@@ -514,32 +484,21 @@ Status RunSweep(const SweepPlan& plan, const std::string& executable, int jobs, 
   std::atomic<size_t> next{0};
   std::mutex mutex;
   Status internal = Status::Ok();
+  ChildProcesses children;
   const auto worker = [&] {
-    for (size_t k; (k = next++) < todo.size();) {
+    for (size_t k; InterruptSignal() == 0 && (k = next++) < todo.size();) {
       const SweepRun& run = plan.runs[todo[k]];
-      const fs::path folder = RunFolder(plan, run);
-      std::error_code ec;
-      fs::create_directories(folder, ec);
-      RemoveStaleStaging(folder);
       const auto start = std::chrono::steady_clock::now();
-      std::string error;
-      const int status = RunChild(executable, RunArguments(plan, run), (folder / "run.log").string(), &error);
       std::string run_error;
-      RunState state = InspectRun(plan, run, &run_error);
-      if (status == 0 && state != RunState::kFinished) {
-        run_error = "pqlayout run succeeded but " + (folder / "report.json").string() + " does not hold this run";
-        state = RunState::kFailed;
-      } else if (status != 0 && state != RunState::kFailed) {
-        // No error.txt: the run could not start or was killed; record why.
-        run_error = status < 0 ? error : DescribeExit(status);
-        state = RunState::kFailed;
-      }
-      if (state == RunState::kFailed) {
-        const Status written = WriteTextFileAtomically((folder / "error.txt").string(), run_error + "\n");
-        std::lock_guard<std::mutex> lock(mutex);
-        if (!written.ok() && internal.ok()) internal = written;
-      }
+      Status written = Status::Ok();
+      const RunState state = RunOne(plan, run, executable, &children, &run_error, &written);
       std::lock_guard<std::mutex> lock(mutex);
+      if (!written.ok() && internal.ok()) internal = written;
+      if (state == RunState::kPending) {
+        LOG(INFO) << "sweep: " << run.name << ": interrupted";
+        FlushProgress();
+        continue;
+      }
       ++summary->ran;
       char prefix[64];
       std::snprintf(prefix, sizeof(prefix), "sweep: [%d/%zu] ", summary->ran, todo.size());
@@ -556,8 +515,24 @@ Status RunSweep(const SweepPlan& plan, const std::string& executable, int jobs, 
   };
   std::vector<std::thread> threads;
   const int n = std::max(1, std::min<int>(jobs, static_cast<int>(todo.size())));
-  for (int t = 0; t < n; ++t) threads.emplace_back(worker);
+  std::atomic<int> working{n};
+  for (int t = 0; t < n; ++t) threads.emplace_back([&] {
+    worker();
+    --working;
+  });
+  // Meanwhile this thread passes SIGINT/SIGTERM on to the runs in progress (the workers are
+  // blocked waiting for them), then waits for them to wind down.
+  while (working > 0) {
+    children.ForwardInterrupt();
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
   for (auto& t : threads) t.join();
+  if (InterruptSignal() != 0) {
+    LOG(INFO) << "sweep: interrupted after " << summary->ran << " of " << todo.size()
+              << " runs; run the same command again to resume";
+    FlushProgress();
+    return CheckInterrupt();
+  }
   PQ_RETURN_IF_ERROR(internal);
   CollectSummary collected;
   return CollectSweep(plan.out_dir, &collected);

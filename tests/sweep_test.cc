@@ -1,7 +1,8 @@
 // `pqlayout sweep` and `pqlayout collect`: parameter parsing, the cartesian product, resuming
 // an interrupted sweep (only the missing runs run), `--list` + `collect` reproducing the
-// direct sweep byte for byte, and a failed run becoming a row with its error. Runs on a small
-// dome (about 0.5 s per run).
+// direct sweep byte for byte, a failed run becoming a row with its error, a run killed while
+// committing never counted finished, and SIGTERM stopping the sweep with its runs. Runs on a
+// small dome (about 0.5 s per run), the SIGTERM test on the Great Court.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
@@ -10,10 +11,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "problems/sweep.h"
 #include "problems/sweep_figures.h"
+#include "tests/run_helpers.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -232,7 +235,8 @@ TEST(SweepCli, ResumeRunsOnlyTheMissingRuns) {
   ASSERT_EQ(before.size(), 2u);
   // ... and one of its runs lost its report (killed while committing, say).
   fs::remove(dir + "/sw/runs/alignment=1_closeness=10/report.json");
-  fs::create_directories(dir + "/sw/runs/.alignment=1_closeness=10.partial-99999/analysis");  // its leftover staging
+  // Its leftover staging; 99999999 is above Linux's PID_MAX_LIMIT, so no process has that id.
+  fs::create_directories(dir + "/sw/runs/.alignment=1_closeness=10.partial-99999999/analysis");
   r = Pqlayout(dir, std::string("sweep dome.yaml ") + kParams + " --out sw");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("4 runs, 1 already finished, 3 to run"), std::string::npos) << r.out;
@@ -240,7 +244,7 @@ TEST(SweepCli, ResumeRunsOnlyTheMissingRuns) {
   auto after = ReportTimes(dir + "/sw");
   ASSERT_EQ(after.size(), 4u);
   EXPECT_EQ(after["alignment=1_closeness=0.1"], before["alignment=1_closeness=0.1"]);  // not rewritten
-  EXPECT_FALSE(fs::exists(dir + "/sw/runs/.alignment=1_closeness=10.partial-99999"));
+  EXPECT_FALSE(fs::exists(dir + "/sw/runs/.alignment=1_closeness=10.partial-99999999"));
   EXPECT_EQ(ReadCsv(dir + "/sw/sweep.csv").rows.size(), 4u);
   // A complete sweep reruns nothing.
   before = after;
@@ -329,6 +333,97 @@ TEST(SweepCli, AFailedRunIsARowWithItsError) {
   r = Pqlayout(dir, "sweep dome.yaml" + params + " --out sw");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.out.find("2 runs, 1 already finished, 1 to run"), std::string::npos) << r.out;
+}
+
+// The run's folder holds a complete earlier run of another config (rise 3); the sweep's run
+// (rise 4) is killed before each unlink and rename of its commit in turn
+// (PQLAYOUT_TEST_FAIL_COMMIT_AFTER, problems/output_files.h). The sweep must never count it as
+// finished, and the earlier run must stay complete or lose its report.json.
+TEST(SweepCli, ARunKilledWhileCommittingIsNeverCountedFinished) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "dome.yaml", kDomeConfig);
+  const std::string folder = dir + "/sw/runs/rise=4";
+  ASSERT_EQ(Pqlayout(dir, "run dome.yaml --set surface.rise=3 --until guidance --out sw/runs/rise=4").exit_code, 0);
+  const testing::Files old = testing::Snapshot(folder);
+  ASSERT_TRUE(old.count("report.json") && old.count("figures/guidance.svg"));
+  fs::copy(folder, dir + "/old", fs::copy_options::recursive);
+  const auto sweep = [&](int n) {
+    return Shell(dir, "PQLAYOUT_TEST_FAIL_COMMIT_AFTER=" + std::to_string(n) + " '" PQLAYOUT_BINARY
+                      "' sweep dome.yaml --param surface.rise=4 --until guidance --out sw");
+  };
+  int kills = 0;
+  for (int n = 0; n < 100; ++n) {
+    fs::remove_all(folder);
+    fs::copy(dir + "/old", folder, fs::copy_options::recursive);
+    const Result r = sweep(n);
+    const Csv csv = ReadCsv(dir + "/sw/sweep.csv");
+    ASSERT_EQ(csv.rows.size(), 1u) << n << r.err;
+    testing::Files files = testing::Snapshot(folder);
+    files.erase("run.log");
+    files.erase("error.txt");
+    if (r.exit_code == 0) {  // past the last step: committed
+      EXPECT_EQ(csv.rows[0].at("status"), "ok");
+      EXPECT_EQ(nlohmann::json::parse(files.at("report.json"))["config"]["surface"]["rise"].get<double>(), 4.0);
+      EXPECT_EQ(files.size(), old.size());
+      break;
+    }
+    ++kills;
+    EXPECT_EQ(r.exit_code, 1) << n << r.err;
+    EXPECT_EQ(csv.rows[0].at("status"), "failed") << n;
+    EXPECT_EQ(csv.rows[0].at("error"), "pqlayout run exited with code 137") << n;
+    if (files.count("report.json")) EXPECT_EQ(files, old) << n;  // the earlier run, whole
+    EXPECT_EQ(Lines(Pqlayout(dir, "sweep dome.yaml --param surface.rise=4 --until guidance --out sw --list").out).size(),
+              1u) << n;  // still to run
+  }
+  // Both runs have the same top-level entries E: unlink the report, replace E − 1 entries
+  // (2 steps each), move the report in: 2E steps, a kill before each.
+  std::set<std::string> entries;
+  for (const auto& [name, content] : old) entries.insert(name.substr(0, name.find('/')));
+  EXPECT_EQ(kills, 2 * static_cast<int>(entries.size()));
+}
+
+// SIGTERM to `sweep -j 2` while two Great Court runs are in their stages: the sweep forwards
+// it, waits for both runs to wind down (each removes its staging folder) and exits 143; no
+// run is left running, and none is counted as finished or failed.
+TEST(SweepCli, SigtermStopsTheRunsInProgressAndLeavesNoOrphans) {
+  const auto dir = testing::TempDir();
+  const std::string config = PQLAYOUT_SOURCE_DIR "/examples/great_court.yaml";
+  const std::string param = "levelset.weights.alignment=1,10,100";
+  const pid_t sweep = testing::StartPqlayout(dir, {"sweep", config, "--param", param, "-j", "2", "--out", "sw"});
+  std::vector<pid_t> runs;
+  const auto staging_folders = [&] {
+    int n = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir + "/sw/runs", ec))
+      n += entry.path().filename().string().find(".partial-") != std::string::npos;
+    return n;
+  };
+  int status = 0;
+  bool exited = false;
+  ASSERT_TRUE(testing::WaitUntil([&] {
+    exited = testing::Exited(sweep, &status);
+    runs = testing::ChildrenOf(sweep);
+    return exited || (runs.size() == 2 && staging_folders() == 2);  // both runs are in their stages
+  }));
+  ASSERT_FALSE(exited) << testing::ReadFile(dir + "/stderr.txt");
+  ASSERT_EQ(::kill(sweep, SIGTERM), 0);
+  status = testing::WaitFor(sweep);
+  std::vector<pid_t> orphans;
+  for (const pid_t run : runs)
+    if (testing::ProcessExists(run)) orphans.push_back(run);
+  for (const pid_t run : orphans) ::kill(run, SIGKILL);  // do not leave them behind if the test fails
+  EXPECT_EQ(orphans, std::vector<pid_t>());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 143);
+  EXPECT_EQ(testing::ReadFile(dir + "/stderr.txt"), "pqlayout: interrupted\n");
+  EXPECT_NE(testing::ReadFile(dir + "/stdout.txt").find("sweep: interrupted after 0 of 3 runs"), std::string::npos);
+  EXPECT_EQ(staging_folders(), 0);
+  for (const char* run : {"alignment=1", "alignment=10", "alignment=100"}) {
+    EXPECT_FALSE(fs::exists(dir + "/sw/runs/" + run + "/report.json")) << run;
+    EXPECT_FALSE(fs::exists(dir + "/sw/runs/" + run + "/error.txt")) << run;  // not failed: pending
+  }
+  EXPECT_FALSE(fs::exists(dir + "/sw/sweep.csv"));
+  EXPECT_EQ(Lines(Pqlayout(dir, "sweep " + config + " --param " + param + " --out sw --list").out).size(), 3u);
 }
 
 TEST(SweepCli, BadParametersStopBeforeAnythingRuns) {

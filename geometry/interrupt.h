@@ -1,0 +1,40 @@
+// Interrupts: SIGINT and SIGTERM stop a run cleanly instead of killing it mid-write.
+//
+// The signal handler only records the signal: one compare-and-swap on a lock-free atomic,
+// which is async-signal-safe (C++17 [support.signal]); it allocates nothing, takes no lock,
+// touches no file and does not even change errno. Everything else happens on the main thread,
+// in ordinary code: the long stages poll the flag (every Ceres iteration through
+// solver/ceres_options.h, and the pipeline before each stage), return a failed Status, the
+// stack unwinds, OutputFiles' destructor removes the staging folder, and main() prints
+// `pqlayout: interrupted` and exits with 128 + the signal (130 for SIGINT, 143 for SIGTERM).
+// The process exits normally with that code rather than re-raising the signal: a shell
+// shows the same $?, and the output folder is in a known state when it does. A signal that
+// arrives once the outputs are being moved into place (OutputFiles::Commit, milliseconds)
+// is too late: the run completes and exits 0, so the exit code always matches the folder.
+//
+// Only the first signal counts; later ones are ignored while the run winds down. That is
+// deliberate: Ctrl-C in a terminal reaches `sweep` and its runs (one process group), and
+// `sweep` forwards it to them as well, so every run sees it twice. To stop at once use
+// SIGKILL; the staging folder it leaves is removed by the next run into the same folder.
+#pragma once
+
+#include "geometry/status.h"
+
+namespace pqlayout {
+
+// Installs the handler for SIGINT and SIGTERM, except for a signal that is ignored
+// (nohup, a background job of a non-interactive shell), which stays ignored. Only for
+// commands that poll: a command that never looks at the flag would become unstoppable.
+void InstallInterruptHandlers();
+
+// The first SIGINT or SIGTERM received since InstallInterruptHandlers, or 0.
+int InterruptSignal();
+
+// Ok, or (after a signal) Internal "interrupted by signal N (NAME)". Callers return it
+// like any failure; main() recognises the interrupt by InterruptSignal(), not by the text.
+Status CheckInterrupt();
+
+// Tests: behave as if `signal` had been received (0: as if none had).
+void SetInterruptForTesting(int signal);
+
+}  // namespace pqlayout
