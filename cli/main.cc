@@ -178,7 +178,7 @@ int Main(int argc, char** argv) {
   sweep->add_option("--set", sweep_args.options.overrides, "override a config key in every run, KEY=VALUE; repeatable")
       ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   sweep->add_option("-j,--jobs", sweep_args.jobs,
-                    "runs at a time, each its own process (each Ceres solve already uses 2 threads)")
+                    "runs at a time, each its own process (each on `threads` threads, default 1): -j = cores")
       ->check(CLI::Range(1, 256))->capture_default_str();
   sweep->add_option("--out", sweep_args.options.out_dir, "sweep folder (default: out/<config name>-sweep)");
   sweep->add_option("--until", sweep_args.options.until, "last stage of every run")

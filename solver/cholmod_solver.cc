@@ -14,12 +14,13 @@ struct CholmodSolver::Impl {
   cholmod_factor* factor = nullptr;
   Impl() {
     cholmod_start(&common);
-    // One thread (the default): simplicial LDLᵀ, CHOLMOD's own loops, no BLAS, so the factor
+    // One thread (the default): simplicial LLᵀ, CHOLMOD's own loops, no BLAS, so the factor
     // is bit-identical on every CPU (solver/numerics.h). The supernodal factor calls OpenBLAS,
     // whose kernels differ per CPU by an ulp, and the non-convex stages downstream amplify
     // that into another layout; it is ~5x faster at 500k unknowns, so `threads` > 1, which
     // gives up bit-identity anyway, lets CHOLMOD choose it.
     common.supernodal = NumericThreads() > 1 ? CHOLMOD_AUTO : CHOLMOD_SIMPLICIAL;
+    common.final_ll = true;  // LLᵀ: a non-positive pivot is refused (LDLᵀ would go on past it)
     common.print = 0;  // no printing from inside CHOLMOD; errors come back as Status
     common.error_handler = nullptr;
   }

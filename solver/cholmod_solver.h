@@ -1,5 +1,5 @@
 // CholmodSolver: sparse symmetric positive-definite solves with CHOLMOD (Davis & Hager).
-// With one numeric thread (the default) the factorisation is simplicial (LDLᵀ, no BLAS),
+// With one numeric thread (the default) the factorisation is simplicial (LLᵀ, no BLAS),
 // not supernodal as the paper's §2.2 suggests: it gives the same factor on every CPU, which
 // the supernodal one, running on OpenBLAS's CPU-specific kernels, does not; with more
 // threads CHOLMOD picks supernodal where it pays (solver/numerics.h; timings in
