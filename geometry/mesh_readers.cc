@@ -31,23 +31,40 @@ bool ParsePoint(const std::vector<std::string_view>& words, size_t first, Eigen:
 // One corner of an OBJ face ("7", "7/1", "7//3", "-2/1/1") as a 0-based index. Positive
 // indices may name a vertex that comes later in the file: the largest one is kept in
 // *max_positive and checked once the file has been read.
-Status ParseObjCorner(std::string_view corner, const std::string& where, int n_points, int* index,
-                      long long* max_positive) {
+bool ParseObjCorner(std::string_view corner, int n_points, int* index, long long* max_positive, std::string* problem) {
   long long number = 0;
-  if (!ParseInteger(corner.substr(0, corner.find('/')), &number) || number == 0)
-    return Status::InvalidInput(where + Quote(corner) + " is not a vertex index");
-  if (number > INT_MAX || number < -static_cast<long long>(INT_MAX))
-    return Status::InvalidInput(where + "vertex index " + std::to_string(number) + " names no vertex");
-  if (number > 0) {
-    *max_positive = std::max(*max_positive, number);
-    *index = static_cast<int>(number - 1);
-  } else {
-    if (n_points + number < 0)
-      return Status::InvalidInput(where + "vertex index " + std::to_string(number) +
-                                  " points before the first vertex");
-    *index = static_cast<int>(n_points + number);
+  if (!ParseInteger(corner.substr(0, corner.find('/')), &number) || number == 0) {
+    *problem = Quote(corner) + " is not a vertex index";
+    return false;
   }
-  return Status::Ok();
+  if (number > INT_MAX || n_points + number < 0) {
+    *problem = NoSuchVertex(number, n_points);
+    return false;
+  }
+  if (number > 0) *max_positive = std::max(*max_positive, number);
+  *index = static_cast<int>(number > 0 ? number - 1 : n_points + number);
+  return true;
+}
+
+// A `v` or `f` statement; other statements carry nothing pqlayout uses.
+bool ReadObjStatement(const std::vector<std::string_view>& words, PolygonSoup* soup, long long* max_index,
+                      std::string* problem) {
+  if (words[0] == "v") {
+    if (words.size() < 4) {
+      *problem = "a vertex needs three coordinates";
+      return false;
+    }
+    Eigen::Vector3d p;
+    if (!ParsePoint(words, 1, &p, problem)) return false;
+    soup->points.push_back(p);
+  } else if (words[0] == "f") {
+    std::vector<int> face(words.size() - 1);
+    const int n_points = static_cast<int>(std::min<size_t>(soup->points.size(), INT_MAX));
+    for (size_t k = 1; k < words.size(); ++k)
+      if (!ParseObjCorner(words[k], n_points, &face[k - 1], max_index, problem)) return false;
+    soup->faces.push_back(std::move(face));
+  }
+  return true;
 }
 
 }  // namespace
@@ -57,35 +74,20 @@ Status ReadObjSoup(const std::string& path, PolygonSoup* soup) {
   PQ_RETURN_IF_ERROR(ReadFileBytes(path, &bytes));
   LineScanner lines(bytes);
   std::vector<std::string_view> words;
+  std::string problem;
   long long max_index = 0;  // the largest positive vertex index, and its line
   int max_index_line = 0;
   for (std::string_view line; lines.Next(&line);) {
     SplitWords(line, &words);
     if (words.empty()) continue;
-    const std::string where = path + ":" + std::to_string(lines.line_number()) + ": ";
-    if (words[0] == "v") {
-      if (words.size() < 4) return Status::InvalidInput(where + "a vertex needs three coordinates");
-      Eigen::Vector3d p;
-      std::string problem;
-      if (!ParsePoint(words, 1, &p, &problem)) return Status::InvalidInput(where + problem);
-      if (soup->points.size() == INT_MAX) return Status::InvalidInput(where + "too many vertices");
-      soup->points.push_back(p);
-    } else if (words[0] == "f") {
-      std::vector<int> face(words.size() - 1);
-      const long long before = max_index;
-      for (size_t k = 1; k < words.size(); ++k)
-        PQ_RETURN_IF_ERROR(ParseObjCorner(words[k], where, static_cast<int>(soup->points.size()),
-                                          &face[k - 1], &max_index));
-      if (max_index > before) max_index_line = lines.line_number();
-      soup->faces.push_back(std::move(face));
-    }
+    const long long before = max_index;
+    if (!ReadObjStatement(words, soup, &max_index, &problem)) return LineError(path, lines.line_number(), problem);
+    if (max_index > before) max_index_line = lines.line_number();
   }
   if (soup->points.empty() && soup->faces.empty())
     return Status::InvalidInput(path + ": no vertices or faces found (is this an OBJ file?)");
   if (max_index > static_cast<long long>(soup->points.size()))
-    return LineError(path, max_index_line, "vertex index " + std::to_string(max_index) +
-                                               " names no vertex (the file has " +
-                                               std::to_string(soup->points.size()) + ")");
+    return LineError(path, max_index_line, NoSuchVertex(max_index, soup->points.size()));
   return Status::Ok();
 }
 
@@ -147,25 +149,36 @@ Status ReadOffHeader(const std::string& path, size_t file_size, OffLines* lines,
 }
 
 // "n i1 ... in [colour]": the face's n indices, each naming one of the n_vertices.
-Status ReadOffFace(const std::vector<std::string_view>& words, const std::string& where, long long n_vertices,
-                   std::vector<int>* face) {
+bool ReadOffFace(const std::vector<std::string_view>& words, long long n_vertices, std::vector<int>* face,
+                 std::string* problem) {
   long long n = 0;
-  if (!ParseInteger(words[0], &n) || n < 0)
-    return Status::InvalidInput(where + Quote(words[0]) + " is not a number of corners");
-  if (n > static_cast<long long>(words.size()) - 1)
-    return Status::InvalidInput(where + "the face has " + std::to_string(n) + " corners but lists " +
-                                std::to_string(words.size() - 1) + " indices");
+  if (!ParseInteger(words[0], &n) || n < 0) {
+    *problem = Quote(words[0]) + " is not a number of corners";
+    return false;
+  }
+  if (n > static_cast<long long>(words.size()) - 1) {
+    *problem = "the face has " + std::to_string(n) + " corners but lists " + std::to_string(words.size() - 1) + " indices";
+    return false;
+  }
   face->resize(n);
   for (long long k = 0; k < n; ++k) {
     long long index = -1;
-    if (!ParseInteger(words[k + 1], &index))
-      return Status::InvalidInput(where + Quote(words[k + 1]) + " is not a vertex index");
-    if (index < 0 || index >= n_vertices)
-      return Status::InvalidInput(where + "vertex index " + std::to_string(index) + " names no vertex (the file has " +
-                                  std::to_string(n_vertices) + ")");
+    if (!ParseInteger(words[k + 1], &index)) {
+      *problem = Quote(words[k + 1]) + " is not a vertex index";
+      return false;
+    }
+    if (index < 0 || index >= n_vertices) {
+      *problem = NoSuchVertex(index, n_vertices);
+      return false;
+    }
     (*face)[k] = static_cast<int>(index);
   }
-  return Status::Ok();
+  return true;
+}
+
+Status OffEndsEarly(const std::string& path, long long read, long long declared, const char* what) {
+  return Status::InvalidInput(path + ": the file ends after " + std::to_string(read) + " of " +
+                              std::to_string(declared) + " " + what);
 }
 
 }  // namespace
@@ -179,24 +192,21 @@ Status ReadOffSoup(const std::string& path, PolygonSoup* soup) {
   soup->points.reserve(n_vertices);
   soup->faces.reserve(n_faces);
   std::vector<std::string_view> words;
+  std::string problem;
   for (long long v = 0; v < n_vertices; ++v) {
-    if (!lines.Next(&words))
-      return Status::InvalidInput(path + ": the file ends after " + std::to_string(v) + " of " +
-                                  std::to_string(n_vertices) + " vertices");
-    const std::string where = path + ":" + std::to_string(lines.line_number()) + ": ";
-    if (words.size() < 3) return Status::InvalidInput(where + "vertex " + std::to_string(v) + " needs three coordinates");
+    if (!lines.Next(&words)) return OffEndsEarly(path, v, n_vertices, "vertices");
     Eigen::Vector3d p;
-    std::string problem;
-    if (!ParsePoint(words, 0, &p, &problem)) return Status::InvalidInput(where + "vertex " + std::to_string(v) + ": " + problem);
+    if (words.size() < 3)
+      return LineError(path, lines.line_number(), "vertex " + std::to_string(v) + " needs three coordinates");
+    if (!ParsePoint(words, 0, &p, &problem))
+      return LineError(path, lines.line_number(), "vertex " + std::to_string(v) + ": " + problem);
     soup->points.push_back(p);
   }
   for (long long f = 0; f < n_faces; ++f) {
-    if (!lines.Next(&words))
-      return Status::InvalidInput(path + ": the file ends after " + std::to_string(f) + " of " +
-                                  std::to_string(n_faces) + " faces");
-    const std::string where = path + ":" + std::to_string(lines.line_number()) + ": face " + std::to_string(f) + ": ";
+    if (!lines.Next(&words)) return OffEndsEarly(path, f, n_faces, "faces");
     std::vector<int> face;
-    PQ_RETURN_IF_ERROR(ReadOffFace(words, where, n_vertices, &face));
+    if (!ReadOffFace(words, n_vertices, &face, &problem))
+      return LineError(path, lines.line_number(), "face " + std::to_string(f) + ": " + problem);
     soup->faces.push_back(std::move(face));
   }
   return Status::Ok();
@@ -261,24 +271,25 @@ Status ReadAsciiStl(const std::string& path, const std::string& bytes, PolygonSo
   for (std::string_view line; lines.Next(&line);) {
     SplitWords(line, &words);
     if (words.empty()) continue;
-    const std::string facet = "facet " + std::to_string(soup->faces.size());
-    const auto error = [&](const std::string& message) { return LineError(path, lines.line_number(), message); };
+    // Messages are only put together on failure: this loop runs for every line of the file.
+    const auto error = [&](const std::string& message) {
+      return LineError(path, lines.line_number(), "facet " + std::to_string(soup->faces.size()) + message);
+    };
     if (words[0] == "vertex") {
       Eigen::Vector3d p;
       std::string problem;
-      if (words.size() < 4) return error(facet + ": a vertex needs three coordinates");
-      if (!ParsePoint(words, 1, &p, &problem)) return error(facet + ": " + problem);
-      if (!p.allFinite()) return error(facet + " has a non-finite coordinate");
-      if (corners.size() == 3) return error(facet + " has more than three vertices");
+      if (words.size() < 4) return error(": a vertex needs three coordinates");
+      if (!ParsePoint(words, 1, &p, &problem)) return error(": " + problem);
+      if (!p.allFinite()) return error(" has a non-finite coordinate");
+      if (corners.size() == 3) return error(" has more than three vertices");
       corners.push_back(vertices.Add(p));
     } else if (words[0] == "endfacet") {
-      if (corners.size() != 3)
-        return error(facet + " has " + std::to_string(corners.size()) + " vertices, not three");
+      if (corners.size() != 3) return error(" has " + std::to_string(corners.size()) + " vertices, not three");
       soup->faces.push_back(corners);
       corners.clear();
     } else if (words[0] != "solid" && words[0] != "facet" && words[0] != "outer" && words[0] != "endloop" &&
                words[0] != "endsolid") {
-      return error("unexpected " + Quote(words[0]) + " in an ASCII STL file");
+      return LineError(path, lines.line_number(), "unexpected " + Quote(words[0]) + " in an ASCII STL file");
     }
   }
   if (!corners.empty())

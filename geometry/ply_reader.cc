@@ -295,8 +295,7 @@ bool ReadPlyItem(const PlyElement& element, long long n_vertices, Values* values
       if (!values->Read(p.type, &value, problem)) return false;
       if (p.role != PlyRole::kFaceCorners) continue;
       if (value < 0 || value >= static_cast<double>(n_vertices)) {
-        *problem = "vertex index " + std::to_string(static_cast<long long>(value)) + " names no vertex (the file has " +
-                   std::to_string(n_vertices) + ")";
+        *problem = NoSuchVertex(static_cast<long long>(value), n_vertices);
         return false;
       }
       corners->push_back(static_cast<int>(value));
@@ -310,6 +309,7 @@ Status ReadPlyBody(const std::string& path, const PlyHeader& header, long long n
                    PolygonSoup* soup) {
   for (const PlyElement& element : header.elements) {
     if (element.properties.empty()) continue;
+    const bool vertex = element.name == "vertex", face = element.name == "face";
     for (long long i = 0; i < element.count; ++i) {
       Eigen::Vector3d point = Eigen::Vector3d::Zero();
       std::vector<int> corners;
@@ -317,8 +317,8 @@ Status ReadPlyBody(const std::string& path, const PlyHeader& header, long long n
       if (!ReadPlyItem(element, n_vertices, values, &point, &corners, &problem))
         return Status::InvalidInput(values->Where(path) + ": " + element.name + " " + std::to_string(i) + ": " +
                                     problem);
-      if (element.name == "vertex") soup->points.push_back(point);
-      else if (element.name == "face") soup->faces.push_back(std::move(corners));
+      if (vertex) soup->points.push_back(point);
+      else if (face) soup->faces.push_back(std::move(corners));
     }
   }
   return Status::Ok();

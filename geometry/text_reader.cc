@@ -4,17 +4,19 @@
 #include <charconv>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 
 namespace pqlayout {
 
 Status ReadFileBytes(const std::string& path, std::string* bytes) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return Status::InvalidInput(path + ": cannot open file");
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) return Status::InvalidInput(path + ": cannot read file");
-  *bytes = std::move(content).str();
+  // One read into a buffer of the file's size: streaming into a growing string copies it
+  // several times, which was most of the time spent on a large mesh.
+  const std::streamoff size = in.tellg();
+  if (size < 0) return Status::InvalidInput(path + ": cannot read file");
+  bytes->resize(static_cast<size_t>(size));
+  in.seekg(0);
+  if (!in.read(bytes->data(), size)) return Status::InvalidInput(path + ": cannot read file");
   return Status::Ok();
 }
 
@@ -54,23 +56,32 @@ bool WordScanner::Next(std::string_view* word) {
   return true;
 }
 
+namespace {
+// std::from_chars takes no '+' sign: drop one, but refuse "+-1" and "++1".
+bool DropPlusSign(std::string_view* word) {
+  if (word->empty() || word->front() != '+') return true;
+  word->remove_prefix(1);
+  return word->empty() || (word->front() != '-' && word->front() != '+');
+}
+}  // namespace
+
 bool ParseDouble(std::string_view word, double* value) {
-  // strtod needs a terminated string; words are short, so the copy stays on the stack.
-  const std::string text(word);
-  if (text.empty()) return false;
-  char* end = nullptr;
-  *value = std::strtod(text.c_str(), &end);
-  return end == text.c_str() + text.size();
+  if (!DropPlusSign(&word) || word.empty()) return false;
+  const char* end = word.data() + word.size();
+  const auto [stop, error] = std::from_chars(word.data(), end, *value);
+  if (stop != end) return false;
+  if (error == std::errc()) return true;
+  if (error != std::errc::result_out_of_range) return false;
+  // Beyond double's range: what strtod gives (inf, for the caller to refuse, or 0).
+  *value = std::strtod(std::string(word).c_str(), nullptr);
+  return true;
 }
 
 bool ParseInteger(std::string_view word, long long* value) {
-  // from_chars takes no '+' sign; allow one, but not "+-1".
-  if (!word.empty() && word.front() == '+') {
-    word.remove_prefix(1);
-    if (!word.empty() && word.front() == '-') return false;
-  }
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), *value);
-  return error == std::errc() && end == word.data() + word.size();
+  if (!DropPlusSign(&word)) return false;
+  const char* end = word.data() + word.size();
+  const auto [stop, error] = std::from_chars(word.data(), end, *value);
+  return error == std::errc() && stop == end;
 }
 
 bool CountFits(long long count, long long bytes_each, size_t bytes) {
@@ -86,6 +97,10 @@ std::string Quote(std::string_view word) {
   }
   if (word.size() > kMax) out += "...";
   return out + "'";
+}
+
+std::string NoSuchVertex(long long index, long long n_vertices) {
+  return "vertex index " + std::to_string(index) + " names no vertex (the file has " + std::to_string(n_vertices) + ")";
 }
 
 Status LineError(const std::string& path, int line, const std::string& message) {

@@ -52,9 +52,10 @@ class WordScanner {
   size_t next_ = 0;
 };
 
-// Whole-word parsing: false unless all of the word is one number ("1.5x" and "" are not).
-// ParseDouble accepts what strtod does, so "1e999" gives inf and "nan" NaN: the caller decides
-// about non-finite values. ParseInteger is false for values beyond the range of long long.
+// Whole-word parsing, independent of the locale: false unless all of the word is one number
+// ("1.5x" and "" are not; a leading '+' is allowed). ParseDouble gives inf for "1e999" and
+// "inf", NaN for "nan": the caller decides about non-finite values. ParseInteger is false for
+// values beyond the range of long long.
 bool ParseDouble(std::string_view word, double* value);
 bool ParseInteger(std::string_view word, long long* value);
 
@@ -64,6 +65,10 @@ bool CountFits(long long count, long long bytes_each, size_t bytes);
 // The word in single quotes, cut to 40 characters, with anything unprintable shown as '?',
 // so that a message about a binary file stays one readable line.
 std::string Quote(std::string_view word);
+
+// "vertex index INDEX names no vertex (the file has N_VERTICES)": what every reader says of a
+// face corner out of range.
+std::string NoSuchVertex(long long index, long long n_vertices);
 
 // InvalidInput "PATH:LINE: message".
 Status LineError(const std::string& path, int line, const std::string& message);
