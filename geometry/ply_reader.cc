@@ -108,8 +108,11 @@ Status ParsePlyHeaderLine(const std::vector<std::string_view>& words, const std:
       return Status::InvalidInput(where + "expected 'element NAME COUNT' with a count >= 0");
     element.name = std::string(words[1]);
     element.line = line;
-    for (const PlyElement& e : header->elements)
-      if (e.name == element.name) return Status::InvalidInput(where + "a second element " + Quote(element.name));
+    // Only the two elements that are read must be unique (checking every name against every
+    // other would take quadratic time on a header of many elements).
+    if (element.name == "vertex" || element.name == "face")
+      for (const PlyElement& e : header->elements)
+        if (e.name == element.name) return Status::InvalidInput(where + "a second element " + Quote(element.name));
     header->elements.push_back(std::move(element));
     return Status::Ok();
   }

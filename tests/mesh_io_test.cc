@@ -294,6 +294,13 @@ struct HostileFile {
 
 std::string LittleEndianU32(uint32_t value) { return std::string(reinterpret_cast<const char*>(&value), 4); }
 
+// "element e0 0\nelement e1 0\n...": a header of n distinct, empty elements.
+std::string ManyElements(int n) {
+  std::string out;
+  for (int k = 0; k < n; ++k) out += "element e" + std::to_string(k) + " 0\n";
+  return out;
+}
+
 std::vector<HostileFile> HostileFiles() {
   const std::string ply_vertices = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
   const std::string ply_ascii = "ply\nformat ascii 1.0\n" + ply_vertices;
@@ -312,6 +319,8 @@ std::vector<HostileFile> HostileFiles() {
                         "property float y\nproperty float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n" +
                         std::string(12, '\0') + LittleEndianU32(0xffffffffu) + std::string(8, '\0'),
        ": face 0: the file ends"},
+      {"many_elements.ply", "ply\nformat ascii 1.0\n" + ManyElements(200000) + "end_header\n",
+       ": the header declares no 'vertex' element"},  // took quadratic time to check for duplicate names
       {"negative_count.ply", "ply\nformat ascii 1.0\nelement vertex -1\nend_header\n", ":3: expected 'element NAME COUNT'"},
       {"not.ply", "solid x\n", ": the first line is not 'ply'"},
       {"no_z.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n",
@@ -345,7 +354,7 @@ std::vector<HostileFile> HostileFiles() {
        "the header's 4294967295 triangles need 214748364834 bytes, the file has 134"},
       {"quad.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\n",
        ":7: facet 0 has more than three vertices"},
-      {"garbage.stl", "solid s\n\x01\x02 junk\n", ":2: unexpected '??' in an ASCII STL file"},
+      {"garbage.stl", "solid s\n\x01\x02 junk\n", ":2: unexpected '?\?' in an ASCII STL file"},
       {"open.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", ": the file ends inside facet 0"},
       {"nan.stl", stl_header + LittleEndianU32(1) + std::string(12, '\0') + std::string(4, '\xff') + std::string(34, '\0'),
        ": facet 0 has a non-finite coordinate"},
