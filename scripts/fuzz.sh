@@ -39,8 +39,9 @@ for format in "${formats[@]}"; do
   "$build/fuzz/fuzz_$format" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
     -dict="$root/fuzz/dict/$format.dict" -artifact_prefix="$run/artifacts/" -print_final_stats=1 \
     "$run/corpus" > "$run/fuzz.log" 2>&1 || status=$?
-  executed=$(sed -n 's/^stat::number_of_executed_units: *//p' "$run/fuzz.log")
-  coverage=$(grep -o 'cov: [0-9]*' "$run/fuzz.log" | tail -1 | cut -d' ' -f2)
+  # A run that crashes on its first input prints neither line: these must not stop the script.
+  executed=$(sed -n 's/^stat::number_of_executed_units: *//p' "$run/fuzz.log" || true)
+  coverage=$(grep -o 'cov: [0-9]*' "$run/fuzz.log" | tail -1 | cut -d' ' -f2 || true)
   findings=$(find "$run/artifacts" -type f | wc -l)
   if [ "$status" -eq 0 ] && [ "$findings" -eq 0 ]; then
     echo "fuzz $format: ok, ${executed:-?} inputs in ${seconds} s, coverage ${coverage:-?} edges, corpus $(ls "$run/corpus" | wc -l) files"
@@ -48,7 +49,7 @@ for format in "${formats[@]}"; do
     failed=1
     echo "fuzz $format: FAILED (exit $status) after ${executed:-?} inputs; findings in $run/artifacts:" >&2
     ls "$run/artifacts" >&2
-    grep -E 'ERROR|SUMMARY|ALARM|out-of-memory|Test unit written' "$run/fuzz.log" | head -20 >&2
+    grep -E 'ERROR|SUMMARY|ALARM|out-of-memory|Test unit written' "$run/fuzz.log" | head -20 >&2 || true
   fi
 done
 exit "$failed"
