@@ -1,10 +1,10 @@
-// Mesh input and output. OBJ is read at full double precision by our own parser; PLY, OFF and
-// STL go through OpenMesh's readers, which parse coordinates in single precision. Either way
-// the file is read into a
-// raw polygon soup first, because OpenMesh's own importer silently repairs non-manifold
-// input by duplicating vertices; the soup is validated (mesh_validation.h) and only then
-// turned into a half-edge mesh. Writing (OBJ, PLY) is our own too, atomic and at full double
-// precision (OpenMesh's writers also go through floats).
+// Mesh input and output. OBJ, PLY, OFF and STL are read at full double precision by our own
+// readers (mesh_readers.h), which refuse malformed files with one line instead of crashing,
+// hanging or allocating without bound as OpenMesh's readers do. The file is read into a raw
+// polygon soup first, because OpenMesh's own importer silently repairs non-manifold input by
+// duplicating vertices; the soup is validated (mesh_validation.h) and only then turned into a
+// half-edge mesh, so OpenMesh only ever sees input that has been checked. Writing (OBJ, PLY)
+// is our own too, atomic and at full double precision (OpenMesh's writers go through floats).
 #pragma once
 
 #include <string>
@@ -26,8 +26,9 @@ struct PolygonSoup {
 // File extensions (lower case, with dot) that ReadPolygonSoup accepts.
 const std::vector<std::string>& ReadableMeshExtensions();
 
-// Reads a mesh file into a soup. InvalidInput naming the file if it is missing, unreadable
-// or of an unsupported format.
+// Reads a mesh file into a soup, choosing the reader by extension. InvalidInput naming the
+// file (and the line or element, where there is one) if it is missing, unreadable, of an
+// unsupported format or malformed. Every face index names a vertex of the soup.
 Status ReadPolygonSoup(const std::string& path, PolygonSoup* soup);
 
 // Builds a triangle mesh from a soup that passed ValidateSurfaceSoup. Vertices that no face

@@ -148,10 +148,13 @@ struct BadInput {
 TEST(Cli, BadInputGivesOneLineExitTwoAndNoOutput) {
   const auto dir = testing::TempDir();
   testing::WriteFile(dir, "broken.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  // OpenMesh's PLY reader segfaulted on this (a property before any element).
+  testing::WriteFile(dir, "hostile.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n");
   const std::vector<BadInput> cases = {
       {"levelset:\n  wieghts:\n    alignment: 2\n", "", "c.yaml:2: unknown key 'levelset.wieghts'"},
       {"surface:\n  file: missing.obj\n", "", "missing.obj: file not found"},
       {"surface:\n  file: broken.obj\n", "", "broken.obj: face 0 is degenerate"},
+      {"surface:\n  file: hostile.ply\n", "", "hostile.ply:3: 'property' before any 'element'"},
       {"layout:\n  spacing: -3\n", "", "c.yaml:2: layout.spacing: must be > 0"},
       {"", "--set layout.spacing=x", "--set layout.spacing=x: layout.spacing: expected a number"},
       {"", "--until levelsets", "--until: levelsets not in"},
