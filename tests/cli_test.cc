@@ -2,13 +2,10 @@
 // on failure, --set precedence, --until, --version, and report.json's contract keys.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "tests/test_cli.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -16,30 +13,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `pqlayout ARGS` in dir.
-Result RunPqlayout(const std::string& dir, const std::string& args) {
-  const std::string command = "cd '" + dir + "' && '" PQLAYOUT_BINARY "' " + args + " > stdout.txt 2> stderr.txt";
-  const int status = std::system(command.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = ReadAll(dir + "/stdout.txt");
-  r.err = ReadAll(dir + "/stderr.txt");
-  return r;
-}
-
-int CountLines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+using Result = testing::CliResult;
+using testing::CountLines;
+using testing::ReadAll;
+using testing::RunPqlayout;
 
 nlohmann::json ReadReport(const std::string& dir) { return nlohmann::json::parse(ReadAll(dir + "/report.json")); }
 
@@ -131,7 +108,7 @@ TEST(Cli, UntilStopsAfterTheStageAndRemovesStaleOutputs) {
 TEST(Cli, ReadsTheSurfaceFromAFile) {
   const auto dir = testing::TempDir();
   testing::WriteFile(dir, "roof.obj", testing::ObjText(testing::FlatGridSoup(4)));
-  testing::WriteFile(dir, "c.yaml", "surface:\n  file: roof.obj\nboundary:\n  default: free\n"
+  testing::WriteFile(dir, "c.yaml", "surface:\n  file: roof.obj\nlayout:\n  spacing: 1\nboundary:\n  default: free\n"
                                     "  rules:\n    - select: corners\n      condition: fixed\n");
   const Result r = RunPqlayout(dir, "run c.yaml --out o");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -152,12 +129,12 @@ TEST(Cli, BadInputGivesOneLineExitTwoAndNoOutput) {
       {"levelset:\n  wieghts:\n    alignment: 2\n", "", "c.yaml:2: unknown key 'levelset.wieghts'"},
       {"surface:\n  file: missing.obj\n", "", "missing.obj: file not found"},
       {"surface:\n  file: broken.obj\n", "", "broken.obj: face 0 is degenerate"},
-      {"layout:\n  spacing: -3\n", "", "c.yaml:2: layout.spacing: must be > 0"},
+      {"layout:\n  spacing: -3\n", "", "c.yaml:2: layout.spacing: must be > 0 (got -3)"},
       {"", "--set layout.spacing=x", "--set layout.spacing=x: layout.spacing: expected a number"},
       {"", "--until levelsets", "--until: levelsets not in"},
       {"surface:\n  generator: plane\n  edge_length: 1e-7\n", "", "surface.edge_length"},
       {"boundary:\n  rules:\n    - select: inner\n      condition: free\n",
-       "--set surface.generator=plane --set surface.edge_length=2", "boundary.rules[0] (line 3): selects inner loops"},
+       "--set surface.generator=plane --set surface.edge_length=2", "c.yaml:3: boundary.rules[0]: selects inner loops"},
   };
   for (const auto& c : cases) {
     testing::WriteFile(dir, "c.yaml", c.config);
