@@ -320,5 +320,22 @@ TEST(HostileCli, AFarAwayUnusedVertexIsDroppedWithAWarningInTheReport) {
             std::string::npos);
 }
 
+// A layout that misses what was asked for still exits 0, but says so in report.json.
+TEST(HostileCli, AnUnreachableCrossingAngleIsAWarningInTheReport) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "c.yaml",
+                     "surface: {generator: plane, width: 10, depth: 6, edge_length: 1}\nlayout: {spacing: 2}\n"
+                     "levelset: {min_angle: 89.9}\n");
+  const testing::CliResult r = testing::RunPqlayout(dir, "run c.yaml --out result --until levelset");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(testing::ReadAll(dir + "/result/report.json"));
+  const int below = report["stages"]["levelset"]["faces_below_min_angle"].get<int>();
+  EXPECT_GT(below, 0);
+  ASSERT_EQ(report["warnings"].size(), 1u) << report["warnings"];
+  EXPECT_EQ(report["warnings"][0].get<std::string>().rfind("levelset: " + std::to_string(below) + " faces (", 0), 0u)
+      << report["warnings"][0];
+  EXPECT_NE(report["warnings"][0].get<std::string>().find("cross below levelset.min_angle 89.9°"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace pqlayout
