@@ -102,11 +102,13 @@ Status CheckSpacingFitsSurface(const SurfaceModel& surface, const LayoutOptions&
                                 Bound(extent.short_side / kMinPanelsAcross, false) + " m");
   // area / h² can be inf for an absurdly small h: the comparison still refuses it.
   const double panels = surface.total_area() / (h * h);
-  if (!(panels <= layout.max_panels))
+  if (!(panels <= layout.max_panels)) {
+    const double h_min = std::sqrt(surface.total_area() / layout.max_panels);
     return Status::InvalidInput("layout.spacing: " + Num(h) + " m would give about " + Num(panels) + " panels on the " +
                                 Num(surface.total_area()) + " m² of " + source + " (area / h²), more than " +
                                 "layout.max_panels = " + std::to_string(layout.max_panels) + "; use layout.spacing >= " +
-                                Bound(std::sqrt(surface.total_area() / layout.max_panels), true) + " m or raise layout.max_panels");
+                                Bound(h_min, true) + " m or raise layout.max_panels");
+  }
   return CheckHoles(surface, h, source);
 }
 

@@ -127,7 +127,8 @@ Status RowFace(const GuidanceRow& row, int num_faces, int* face) {
 Status RowDirection(const GuidanceRow& row, const Eigen::Vector3d& n, Eigen::Vector3d* unit, double* magnitude) {
   const Eigen::Vector3d d(row.values[1], row.values[2], row.values[3]);
   for (int k = 0; k < 3; ++k)
-    if (!std::isfinite(d[k])) return Status::InvalidInput("d" + std::string(1, "xyz"[k]) + " is '" + row.words[1 + k] + "', not a finite number");
+    if (!std::isfinite(d[k]))
+      return Status::InvalidInput("d" + std::string(1, "xyz"[k]) + " is '" + row.words[1 + k] + "', not a finite number");
   const double largest = d.cwiseAbs().maxCoeff();
   *magnitude = 0.0;
   if (largest == 0.0) return Status::Ok();
@@ -176,7 +177,8 @@ Status ReadGuidanceFile(const SurfaceModel& surface, const GuidanceOptions& opti
                            .WithContext(where + ": face " + std::to_string(f)));
     if (columns == 5) {
       const double w = row.values[4];
-      if (!(w >= 0.0 && w <= 1.0)) return Status::InvalidInput(where + ": weight must be in [0, 1], got '" + row.words[4] + "'");
+      if (!(w >= 0.0 && w <= 1.0))
+        return Status::InvalidInput(where + ": weight must be in [0, 1], got '" + row.words[4] + "'");
       if (w > 0.0 && field->magnitude[f] == 0.0)
         return Status::InvalidInput(where + ": face " + std::to_string(f) + " has weight " + row.words[4] +
                                     " but no direction (zero, or normal to the face)");
@@ -199,7 +201,8 @@ Status ReadGuidanceFile(const SurfaceModel& surface, const GuidanceOptions& opti
     const auto ids = surface.face_vertices(f);
     field->direction[f] = (surface.position(ids[1]) - surface.position(ids[0])).normalized();
   }
-  field->weight = columns == 5 ? given_weight : AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
+  field->weight = columns == 5 ? given_weight
+                                : AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
   for (int f = 0; f < num_faces; ++f)
     if (field->magnitude[f] == 0.0) field->weight[f] = 0.0;
   return Status::Ok();

@@ -110,7 +110,8 @@ Status RunMembraneStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
             << solution.factor_seconds << " s, residual " << solution.relative_residual << ")";
   std::ostringstream q;  // not via int: a large q would overflow the cast
   q << state->config.load.q;
-  return WriteDisplacementFigure(surface, solution.v_z, "Membrane displacement v_z under dead load q = " + q.str() + " N/m²",
+  return WriteDisplacementFigure(surface, solution.v_z,
+                                 "Membrane displacement v_z under dead load q = " + q.str() + " N/m²",
                                  out->Path("figures/displacement.svg"));
 }
 

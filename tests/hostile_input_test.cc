@@ -70,10 +70,12 @@ TEST(HostileIds, IdsFileErrorsNameTheFileAndLine) {
   const auto dir = testing::TempDir();
   OneRule r(BoundarySelector::Kind::kIdsFile);
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"0, 1\n# a comment\n-3\n", "ids.txt:3: '-3' is not a vertex id (ids are whole numbers from 0) (c.yaml:7: boundary.rules[0])"},
+      {"0, 1\n# a comment\n-3\n",
+       "ids.txt:3: '-3' is not a vertex id (ids are whole numbers from 0) (c.yaml:7: boundary.rules[0])"},
       {"0 1.5\n", "ids.txt:1: '1.5' is not a vertex id"},
       {"99999999999999999999\n", "ids.txt:1: '99999999999999999999' is not a vertex id"},
-      {"0\n\n2 77\n", "ids.txt:3: vertex 77 does not exist (the surface has 25 vertices, numbered from 0) (c.yaml:7: boundary.rules[0])"},
+      {"0\n\n2 77\n",
+       "ids.txt:3: vertex 77 does not exist (the surface has 25 vertices, numbered from 0) (c.yaml:7: boundary.rules[0])"},
       {"6\n", "ids.txt:1: vertex 6 is not a boundary vertex"},
       {"# nothing\n", "c.yaml:7: boundary.rules[0]: selects no boundary vertex"},
   };
