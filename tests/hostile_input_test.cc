@@ -315,7 +315,7 @@ TEST(HostileCli, AFarAwayUnusedVertexIsDroppedWithAWarningInTheReport) {
   testing::WriteFile(dir, "c.yaml", "surface:\n  file: far.obj\nlayout:\n  spacing: 2\n");
   const testing::CliResult r = testing::RunPqlayout(dir, "run c.yaml --out result --until surface");
   ASSERT_EQ(r.exit_code, 0) << r.err;  // once "face 0 is degenerate": the far vertex set the scale
-  const auto report = nlohmann::json::parse(testing::ReadAll(dir + "/result/report.json"));
+  const auto report = nlohmann::json::parse(testing::ReadFile(dir + "/result/report.json"));
   EXPECT_EQ(report["stages"]["surface"]["n_vertices"], 121);
   ASSERT_EQ(report["warnings"].size(), 1u) << report["warnings"];
   EXPECT_NE(report["warnings"][0].get<std::string>().find("far.obj: ignored 1 vertices that no face uses"),
@@ -330,7 +330,7 @@ TEST(HostileCli, AnUnreachableCrossingAngleIsAWarningInTheReport) {
                      "levelset: {min_angle: 89.9}\n");
   const testing::CliResult r = testing::RunPqlayout(dir, "run c.yaml --out result --until levelset");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto report = nlohmann::json::parse(testing::ReadAll(dir + "/result/report.json"));
+  const auto report = nlohmann::json::parse(testing::ReadFile(dir + "/result/report.json"));
   const int below = report["stages"]["levelset"]["faces_below_min_angle"].get<int>();
   EXPECT_GT(below, 0);
   ASSERT_EQ(report["warnings"].size(), 1u) << report["warnings"];

@@ -1,13 +1,14 @@
-// Running the pqlayout executable from a test: its exit code, stdout and stderr.
+// Running the pqlayout executable from a test to its end: its exit code, stdout and stderr
+// (tests/run_helpers.h: one the test can signal while it runs).
 #pragma once
 
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
+
+#include "tests/run_helpers.h"
 
 namespace pqlayout::testing {
 
@@ -16,20 +17,13 @@ struct CliResult {
   std::string out, err;
 };
 
-inline std::string ReadAll(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // Runs a shell command in dir (stdout and stderr go to dir/stdout.txt and dir/stderr.txt).
 inline CliResult RunInDir(const std::string& dir, const std::string& command) {
   const int status = std::system(("cd '" + dir + "' && " + command + " > stdout.txt 2> stderr.txt").c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = ReadAll(dir + "/stdout.txt");
-  r.err = ReadAll(dir + "/stderr.txt");
+  r.out = ReadFile(dir + "/stdout.txt");
+  r.err = ReadFile(dir + "/stderr.txt");
   return r;
 }
 
