@@ -43,6 +43,15 @@ std::string VersionText() {
   return text;
 }
 
+// The error as one line: a message that carries a library's multi-line text (Ceres lists
+// parameter blocks) is joined, so that stderr is always exactly one line.
+std::string OneLine(std::string message) {
+  for (char& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  return message;
+}
+
 // A command stopped by SIGINT/SIGTERM says so in one line and exits with 128 + the signal
 // (130, 143), whatever failure the interrupt caused on its way out (geometry/interrupt.h).
 int ExitCode(const Status& status) {
@@ -51,7 +60,7 @@ int ExitCode(const Status& status) {
     std::cerr << "pqlayout: interrupted" << std::endl;
     return 128 + signal;
   }
-  std::cerr << "pqlayout: error: " << status.message() << std::endl;
+  std::cerr << "pqlayout: error: " << OneLine(status.message()) << std::endl;
   return static_cast<int>(status.code());
 }
 
@@ -72,7 +81,7 @@ int RecordError(const std::string& error_file, int code, const Status& status) {
     std::filesystem::remove(error_file, ec);
     return code;
   }
-  const Status written = pqlayout::WriteTextFileAtomically(error_file, status.message() + "\n");
+  const Status written = pqlayout::WriteTextFileAtomically(error_file, OneLine(status.message()) + "\n");
   if (!written.ok()) std::cerr << "pqlayout: error: " << written.message() << std::endl;
   return code;
 }
@@ -244,7 +253,7 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     std::cerr << "pqlayout: error: out of memory" << std::endl;
   } catch (const std::exception& e) {
-    std::cerr << "pqlayout: internal error: " << e.what() << std::endl;
+    std::cerr << "pqlayout: internal error: " << OneLine(e.what()) << std::endl;
   } catch (...) {
     std::cerr << "pqlayout: internal error: unknown exception" << std::endl;
   }

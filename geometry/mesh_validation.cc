@@ -9,6 +9,12 @@
 namespace pqlayout {
 namespace {
 
+std::string Str1(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 std::string Str(const Eigen::Vector3d& p) {
   std::ostringstream s;
   s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
@@ -36,22 +42,8 @@ class DisjointSets {
   std::vector<int> parent_;
 };
 
-Status CheckPoints(const PolygonSoup& soup) {
-  for (size_t v = 0; v < soup.points.size(); ++v) {
-    if (!soup.points[v].allFinite())
-      return Status::InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate " +
-                                  Str(soup.points[v]));
-  }
-  return Status::Ok();
-}
-
-Status CheckTriangles(const PolygonSoup& soup) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-  for (const auto& p : soup.points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const double diagonal = (hi - lo).norm();
+// Faces are triangles of three distinct, existing vertices.
+Status CheckFaces(const PolygonSoup& soup) {
   const int nv = static_cast<int>(soup.points.size());
   for (size_t f = 0; f < soup.faces.size(); ++f) {
     const auto& face = soup.faces[f];
@@ -63,10 +55,45 @@ Status CheckTriangles(const PolygonSoup& soup) {
       if (v < 0 || v >= nv) return Status::InvalidInput(name + " references missing vertex " + std::to_string(v));
     if (face[0] == face[1] || face[1] == face[2] || face[2] == face[0])
       return Status::InvalidInput(name + " is degenerate: it uses a vertex twice");
+  }
+  return Status::Ok();
+}
+
+// Coordinates are metres; beyond this a coordinate is a unit mistake (millimetres of a
+// georeferenced model) and squared lengths start to lose every digit or overflow.
+constexpr double kMaxCoordinate = 1e8;
+
+// The vertices the faces use (unused ones are dropped later, with a warning) are finite and
+// plausible; returns their bounding box's diagonal.
+Status CheckPoints(const PolygonSoup& soup, double* diagonal) {
+  std::vector<char> used(soup.points.size(), 0);
+  for (const auto& face : soup.faces)
+    for (const int v : face) used[v] = 1;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (size_t v = 0; v < soup.points.size(); ++v) {
+    if (!used[v]) continue;
+    const Eigen::Vector3d& p = soup.points[v];
+    if (!p.allFinite())
+      return Status::InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate " + Str(p));
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      return Status::InvalidInput("vertex " + std::to_string(v) + " is at " + Str(p) + ", more than " +
+                                  Str1(kMaxCoordinate) + " m from the origin along an axis (coordinates are metres)");
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  *diagonal = (hi - lo).norm();
+  return Status::Ok();
+}
+
+// Zero-area triangles, relative to the size of the used geometry (a far-away unused vertex
+// must not make every face "degenerate").
+Status CheckAreas(const PolygonSoup& soup, double diagonal) {
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    const auto& face = soup.faces[f];
     const Eigen::Vector3d& p0 = soup.points[face[0]];
     const double area = 0.5 * (soup.points[face[1]] - p0).cross(soup.points[face[2]] - p0).norm();
     if (!(area > 1e-12 * diagonal * diagonal))
-      return Status::InvalidInput(name + " is degenerate (zero area): vertices " +
+      return Status::InvalidInput("face " + std::to_string(f) + " is degenerate (zero area): vertices " +
                                   std::to_string(face[0]) + ", " + std::to_string(face[1]) + ", " +
                                   std::to_string(face[2]));
   }
@@ -149,8 +176,10 @@ Status CheckManifold(const PolygonSoup& soup) {
 
 Status ValidateSurfaceSoup(const PolygonSoup& soup) {
   if (soup.faces.empty()) return Status::InvalidInput("the mesh is empty (no faces)");
-  PQ_RETURN_IF_ERROR(CheckPoints(soup));
-  PQ_RETURN_IF_ERROR(CheckTriangles(soup));
+  PQ_RETURN_IF_ERROR(CheckFaces(soup));
+  double diagonal = 0.0;
+  PQ_RETURN_IF_ERROR(CheckPoints(soup, &diagonal));
+  PQ_RETURN_IF_ERROR(CheckAreas(soup, diagonal));
   PQ_RETURN_IF_ERROR(CheckDuplicateFaces(soup));
   return CheckManifold(soup);
 }

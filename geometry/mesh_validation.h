@@ -10,8 +10,10 @@ namespace pqlayout {
 
 // Checks, in this order, and returns InvalidInput with one line naming the first offending
 // element (the caller prefixes the file name):
-//   empty mesh; non-finite vertex coordinates; faces that are not triangles or reference a
-//   missing vertex; degenerate (zero-area) triangles; duplicate faces; non-manifold edges
+//   empty mesh; faces that are not triangles, reference a missing vertex or use one twice;
+//   non-finite or implausible (beyond 1e8 m) coordinates of the vertices the faces use;
+//   degenerate triangles (area ≤ 1e-12 × the squared diagonal of the used vertices' bounding
+//   box); duplicate faces; non-manifold edges
 //   (used by more than two faces, or inconsistently oriented); non-manifold vertices (whose
 //   triangles do not form a single fan); a mesh without boundary.
 Status ValidateSurfaceSoup(const PolygonSoup& soup);

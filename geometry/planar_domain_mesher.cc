@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -95,10 +96,12 @@ Status ValidateLoops(const std::vector<DomainLoop>& loops, double edge_length) {
   const double expected_triangles =
       kTrianglesPerSquareEdge * DomainArea(loops) / (edge_length * edge_length);
   if (expected_triangles > kMaxTriangles) {
-    return Status::InvalidInput("edge_length " + std::to_string(edge_length) +
-                                " would give about " +
-                                std::to_string(static_cast<long long>(expected_triangles)) +
-                                " triangles, more than the limit of 20 million");
+    // Formatted as a double: the count can exceed any integer type (or be inf).
+    std::ostringstream message;
+    message.precision(3);
+    message << "edge_length " << edge_length << " would give about " << expected_triangles
+            << " triangles, more than the limit of 20 million";
+    return Status::InvalidInput(message.str());
   }
   return Status::Ok();
 }

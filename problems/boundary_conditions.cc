@@ -1,34 +1,46 @@
 #include "problems/boundary_conditions.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 namespace pqlayout {
 namespace {
 
-Status ReadIdsFile(const std::string& path, std::vector<int>* ids) {
+// An id and where it was written: "" for the config (the rule's origin says where), or
+// "ids.txt:3" for an ids_file.
+struct VertexId {
+  long long id;
+  std::string where;
+};
+
+Status ReadIdsFile(const std::string& path, std::vector<VertexId>* ids) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return Status::InvalidInput(path + ": vertex-id file not found");
+  if (!std::filesystem::is_regular_file(path, ec)) return Status::InvalidInput(path + ": not a vertex-id file (a folder?)");
   std::ifstream in(path);
-  if (!in) return Status::InvalidInput(path + ": vertex-id file not found");
+  if (!in) return Status::InvalidInput(path + ": cannot read the vertex-id file");
   std::string line;
   for (int line_number = 1; std::getline(in, line); ++line_number) {
     const size_t hash = line.find('#');
     if (hash != std::string::npos) line.resize(hash);
     for (char& ch : line)
-      if (ch == ',' || ch == ';' || ch == '\t') ch = ' ';
+      if (ch == ',' || ch == ';' || ch == '\t' || ch == '\r') ch = ' ';
     std::istringstream words(line);
     std::string word;
+    const std::string where = path + ":" + std::to_string(line_number);
     while (words >> word) {
       size_t used = 0;
-      int id = -1;
+      long long id = -1;
       try {
-        id = std::stoi(word, &used);
+        id = std::stoll(word, &used);
       } catch (const std::exception&) {
         used = 0;
       }
       if (used != word.size() || id < 0)
-        return Status::InvalidInput(path + ":" + std::to_string(line_number) + ": '" + word + "' is not a vertex id");
-      ids->push_back(id);
+        return Status::InvalidInput(where + ": '" + word + "' is not a vertex id (ids are whole numbers from 0)");
+      ids->push_back({id, where});
     }
   }
   return Status::Ok();
@@ -69,14 +81,19 @@ Status Select(const BoundarySelector& s, const SurfaceModel& surface, double cor
       return Status::Ok();
     case K::kIds:
     case K::kIdsFile: {
-      std::vector<int> ids = s.ids;
+      std::vector<VertexId> ids;
+      for (const int v : s.ids) ids.push_back({v, ""});
       if (s.kind == K::kIdsFile) PQ_RETURN_IF_ERROR(ReadIdsFile(s.ids_file, &ids));
-      for (const int v : ids) {
-        if (v >= surface.num_vertices())
-          return Status::InvalidInput("vertex " + std::to_string(v) + " does not exist (the surface has " +
-                                      std::to_string(surface.num_vertices()) + " vertices)");
-        if (!surface.is_boundary(v)) return Status::InvalidInput("vertex " + std::to_string(v) + " is not a boundary vertex");
-        picked->push_back(v);
+      for (const auto& [v, where] : ids) {
+        auto refuse = [&where = where, v = v](const std::string& what) {
+          return Status::InvalidInput((where.empty() ? "" : where + ": ") + "vertex " + std::to_string(v) + what);
+        };
+        // Negative ids are refused when read; checked again here because they index arrays.
+        if (v < 0 || v >= surface.num_vertices())
+          return refuse(" does not exist (the surface has " + std::to_string(surface.num_vertices()) +
+                        " vertices, numbered from 0)");
+        if (!surface.is_boundary(static_cast<int>(v))) return refuse(" is not a boundary vertex");
+        picked->push_back(static_cast<int>(v));
       }
       return Status::Ok();
     }
@@ -93,10 +110,14 @@ Status ResolveBoundaryConditions(const BoundaryOptions& options, const SurfaceMo
     if (surface.is_boundary(v)) (*conditions)[v] = options.default_condition;
   for (size_t r = 0; r < options.rules.size(); ++r) {
     const BoundaryRule& rule = options.rules[r];
-    const std::string name = "boundary.rules[" + std::to_string(r) + "]" +
-                             (rule.origin.empty() ? "" : " (" + rule.origin + ")");
+    const std::string name = (rule.origin.empty() ? "" : rule.origin + ": ") + "boundary.rules[" + std::to_string(r) + "]";
     std::vector<int> picked;
-    PQ_RETURN_IF_ERROR(Select(rule.select, surface, corner_angle, &picked).WithContext(name));
+    const Status selected = Select(rule.select, surface, corner_angle, &picked);
+    // A message that starts with an ids_file's name and line keeps them first.
+    if (!selected.ok() && rule.select.kind == BoundarySelector::Kind::kIdsFile &&
+        selected.message().rfind(rule.select.ids_file + ":", 0) == 0)
+      return Status::InvalidInput(selected.message() + " (" + name + ")");
+    PQ_RETURN_IF_ERROR(selected.WithContext(name));
     if (picked.empty()) return Status::InvalidInput(name + ": selects no boundary vertex");
     for (const int v : picked) (*conditions)[v] = rule.condition;
   }

@@ -16,7 +16,8 @@ using VertexConditions = std::vector<std::optional<BoundaryCondition>>;
 
 // corner_angle: turning angle in degrees for the `corners` selector (extract.corner_angle).
 // A rule that selects no boundary vertex, an index out of range or an id that is not a
-// boundary vertex is InvalidInput naming the rule ("boundary.rules[2] (line 14): ...").
+// boundary vertex is InvalidInput naming the rule ("cfg.yaml:14: boundary.rules[2]: ..."; for
+// an ids_file its name and line come first: "ids.txt:3: vertex 7 ... (cfg.yaml:14: boundary.rules[2])").
 Status ResolveBoundaryConditions(const BoundaryOptions& options, const SurfaceModel& surface,
                                  double corner_angle, VertexConditions* conditions);
 

@@ -12,6 +12,9 @@
 #include <set>
 #include <sstream>
 
+#include "problems/config_rules.h"
+#include "problems/config_yaml.h"
+
 namespace pqlayout {
 
 const char* BoundaryConditionName(BoundaryCondition c) {
@@ -26,64 +29,43 @@ const char* BoundaryConditionName(BoundaryCondition c) {
 
 namespace {
 
+using config_yaml::Describe;
+using config_yaml::FormatNumber;
+using config_yaml::KeyName;
+using config_yaml::ScalarAs;
 using nlohmann::json;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A closed or open interval for numeric keys.
+// A closed or open interval for numeric keys. A `cap` interval is a one-sided range whose
+// upper end only keeps out absurd values: its messages name the bound that was crossed.
 struct Range {
   double lo = -kInf, hi = kInf;
   bool lo_open = false, hi_open = false;
-  bool Contains(double v) const {
-    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-  }
-  std::string Describe() const {
+  bool cap = false;
+  bool AboveLow(double v) const { return lo_open ? v > lo : v >= lo; }
+  bool Contains(double v) const { return AboveLow(v) && (hi_open ? v < hi : v <= hi); }
+  std::string Describe(double v) const {
     std::ostringstream s;
-    if (hi == kInf) s << (lo_open ? "> " : ">= ") << lo;
-    else if (lo == -kInf) s << (hi_open ? "< " : "<= ") << hi;
+    if (hi == kInf || (cap && !AboveLow(v))) s << (lo_open ? "> " : ">= ") << lo;
+    else if (lo == -kInf || cap) s << (hi_open ? "< " : "<= ") << hi;
     else s << "in " << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");
     return s.str();
   }
 };
-const Range kPositive{0.0, kInf, true, false};
-const Range kNonNegative{0.0, kInf, false, false};
+// Every number has a finite upper bound: a value like 1e300 is a typo, and downstream it
+// overflows (v_z = q L² / λ_m, costs of weight × residual²) or reaches a float-to-int cast.
+Range Positive(double hi) { return {0.0, hi, true, false, true}; }
+Range NonNegative(double hi) { return {0.0, hi, false, false, true}; }
+Range AtLeast(double lo, double hi) { return {lo, hi, false, false, true}; }
 const Range kFraction{0.0, 1.0, false, false};
+constexpr double kMaxLength = 1e5;     // m: 100 km, no roof is larger
+constexpr double kMaxWeight = 1e6;     // residual weights (the README's sweeps stay below 1e4)
+constexpr double kMaxPressure = 1e7;   // N/m²: 1000 t per m²
+constexpr double kMaxModulus = 1e15;   // Pa, N/m, N·m
 
-std::string Describe(const YAML::Node& n) {
-  switch (n.Type()) {
-    case YAML::NodeType::Scalar: return "'" + n.Scalar() + "'";
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a mapping";
-    default: return "nothing";
-  }
-}
-
-template <typename T>
-bool ScalarAs(const YAML::Node& n, T* value) {
-  if (!n.IsScalar()) return false;
-  try {
-    *value = n.as<T>();
-    return true;
-  } catch (const YAML::Exception&) {
-    return false;
-  }
-}
-
-// Converts a list node (yaml-cpp's as<std::vector<T>>), false if any element does not convert.
-template <typename T>
-bool ListAs(const YAML::Node& n, std::vector<T>* value) {
-  if (!n.IsSequence()) return false;
-  try {
-    *value = n.as<std::vector<T>>();
-    return true;
-  } catch (const YAML::Exception&) {
-    return false;
-  }
-}
-
-std::string FormatNumber(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+// "key: reason", or "key[1].select: reason" when the reason starts with a list index.
+std::string KeyError(const std::string& key, const std::string& reason) {
+  return key + (reason.rfind('[', 0) == 0 ? "" : ": ") + reason;
 }
 
 // The schema: every key bound to a field. Setters return "" or the reason a value is refused.
@@ -111,6 +93,11 @@ class KeyTable {
   std::string Suggest(const std::string& key) const;
   const std::vector<KeyEntry>& entries() const { return entries_; }
   void set_base_dir(std::string dir) { base_dir_ = std::move(dir); }
+  // Where values come from, for the origin of boundary rules ("cfg.yaml" with lines, or "--set").
+  void set_source(std::string name, bool with_lines) {
+    source_name_ = std::move(name);
+    source_lines_ = with_lines;
+  }
   std::string ResolvePath(const std::string& p) const {
     if (p.empty() || std::filesystem::path(p).is_absolute() || base_dir_.empty()) return p;
     return (std::filesystem::path(base_dir_) / p).lexically_normal().string();
@@ -122,7 +109,7 @@ class KeyTable {
       double v;
       if (!ScalarAs(n, &v)) return "expected a number, got " + Describe(n);
       if (!std::isfinite(v)) return "must be a finite number";
-      if (!r.Contains(v)) return "must be " + r.Describe() + " (got " + FormatNumber(v) + ")";
+      if (!r.Contains(v)) return "must be " + r.Describe(v) + " (got " + FormatNumber(v) + ")";
       *f = v;
       return "";
     }, [f] { return json(*f); }});
@@ -171,22 +158,9 @@ class KeyTable {
   void Rules(const std::string& key, std::vector<BoundaryRule>* f, const std::string& comment);
 
   std::vector<KeyEntry> entries_;
-  std::string base_dir_;
+  std::string base_dir_, source_name_;
+  bool source_lines_ = false;
 };
-
-bool ParseCondition(const YAML::Node& n, BoundaryCondition* c) {
-  std::string s;
-  if (!ScalarAs(n, &s)) return false;
-  for (auto k : {BoundaryCondition::kFixed, BoundaryCondition::kFree, BoundaryCondition::kClamped,
-                 BoundaryCondition::kSliding}) {
-    if (s == BoundaryConditionName(k)) {
-      *c = k;
-      return true;
-    }
-  }
-  return false;
-}
-const char* kConditionList = "fixed | free | clamped | sliding";
 
 void KeyTable::Condition(const std::string& key, BoundaryCondition* f, const std::string& comment) {
   entries_.push_back({key, kConditionList, comment, [f](const YAML::Node& n) -> std::string {
@@ -195,104 +169,11 @@ void KeyTable::Condition(const std::string& key, BoundaryCondition* f, const std
   }, [f] { return json(BoundaryConditionName(*f)); }});
 }
 
-// select: all | outer | inner | corners | {loop: N} | {box: [x0,y0,z0,x1,y1,z1]} |
-//         {ids: [...]} | {ids_file: PATH}
-std::string ParseSelector(const YAML::Node& n, const KeyTable& table, BoundarySelector* s) {
-  const std::string expected =
-      "expected all, outer, inner, corners, or a mapping with one of loop, box, ids, ids_file";
-  using K = BoundarySelector::Kind;
-  if (n.IsScalar()) {
-    const std::map<std::string, K> names{{"all", K::kAll}, {"outer", K::kOuter},
-                                         {"inner", K::kInner}, {"corners", K::kCorners}};
-    const auto it = names.find(n.Scalar());
-    if (it == names.end()) return "unknown selector '" + n.Scalar() + "' (" + expected + ")";
-    s->kind = it->second;
-    return "";
-  }
-  if (!n.IsMap() || n.size() != 1) return expected + ", got " + Describe(n);
-  const std::string kind = n.begin()->first.as<std::string>();
-  const YAML::Node v = n.begin()->second;
-  if (kind == "loop") {
-    if (ScalarAs(v, &s->loop) && s->loop >= 0) { s->kind = K::kLoop; return ""; }
-    return "loop: expected a loop index >= 0, got " + Describe(v);
-  }
-  if (kind == "box") {
-    std::vector<double> b;
-    if (v.size() != 6 || !ListAs(v, &b))
-      return "box: expected [xmin, ymin, zmin, xmax, ymax, zmax], got " + Describe(v);
-    s->box_min = Eigen::Vector3d(b[0], b[1], b[2]);
-    s->box_max = Eigen::Vector3d(b[3], b[4], b[5]);
-    if ((s->box_min.array() > s->box_max.array()).any()) return "box: min corner exceeds max corner";
-    s->kind = K::kBox;
-    return "";
-  }
-  if (kind == "ids") {
-    if (!ListAs(v, &s->ids)) return "ids: expected a list of vertex ids, got " + Describe(v);
-    s->kind = K::kIds;
-    return "";
-  }
-  if (kind == "ids_file") {
-    if (!v.IsScalar()) return "ids_file: expected a file path, got " + Describe(v);
-    s->ids_file = table.ResolvePath(v.Scalar());
-    s->kind = K::kIdsFile;
-    return "";
-  }
-  return "unknown selector '" + kind + "' (" + expected + ")";
-}
-
-json SelectorToJson(const BoundarySelector& s) {
-  using K = BoundarySelector::Kind;
-  switch (s.kind) {
-    case K::kAll: return "all";
-    case K::kOuter: return "outer";
-    case K::kInner: return "inner";
-    case K::kCorners: return "corners";
-    case K::kLoop: return json{{"loop", s.loop}};
-    case K::kBox:
-      return json{{"box", {s.box_min.x(), s.box_min.y(), s.box_min.z(), s.box_max.x(), s.box_max.y(), s.box_max.z()}}};
-    case K::kIds: return json{{"ids", s.ids}};
-    case K::kIdsFile: return json{{"ids_file", s.ids_file}};
-  }
-  return nullptr;
-}
-
 void KeyTable::Rules(const std::string& key, std::vector<BoundaryRule>* f, const std::string& comment) {
   entries_.push_back({key, "list", comment, [this, f](const YAML::Node& n) -> std::string {
-    if (n.IsNull()) { f->clear(); return ""; }
-    if (!n.IsSequence()) return "expected a list of {select: ..., condition: ...}, got " + Describe(n);
-    std::vector<BoundaryRule> rules;
-    for (size_t i = 0; i < n.size(); ++i) {
-      const YAML::Node item = n[i];
-      const std::string where = "[" + std::to_string(i) + "]";
-      if (!item.IsMap()) return where + ": expected {select: ..., condition: ...}, got " + Describe(item);
-      BoundaryRule rule;
-      rule.origin = "line " + std::to_string(item.Mark().line + 1);
-      bool has_select = false, has_condition = false;
-      for (const auto& kv : item) {
-        const std::string k = kv.first.as<std::string>();
-        if (k == "select") {
-          const std::string err = ParseSelector(kv.second, *this, &rule.select);
-          if (!err.empty()) return where + ".select: " + err;
-          has_select = true;
-        } else if (k == "condition") {
-          if (!ParseCondition(kv.second, &rule.condition))
-            return where + ".condition: expected one of " + std::string(kConditionList) + ", got " + Describe(kv.second);
-          has_condition = true;
-        } else {
-          return where + ": unknown key '" + k + "' (a rule has select and condition)";
-        }
-      }
-      if (!has_select || !has_condition) return where + ": a rule needs both select and condition";
-      rules.push_back(rule);
-    }
-    *f = std::move(rules);
-    return "";
-  }, [f] {
-    json list = json::array();
-    for (const auto& r : *f)
-      list.push_back({{"select", SelectorToJson(r.select)}, {"condition", BoundaryConditionName(r.condition)}});
-    return list;
-  }});
+    const RuleSource source{source_name_, source_lines_, [this](const std::string& p) { return ResolvePath(p); }};
+    return ParseBoundaryRules(n, source, f);
+  }, [f] { return BoundaryRulesToJson(*f); }});
 }
 
 KeyTable::KeyTable(Config* c) {
@@ -302,19 +183,19 @@ KeyTable::KeyTable(Config* c) {
   Path("surface.file", &s.file, "reference mesh (OBJ, PLY, OFF or STL; metres); relative paths are relative to the config file");
   Choice("surface.generator", &s.generator, {"", "great_court", "dome", "hypar", "barrel", "plane", "disk", "annulus"},
          "built-in reference surface, used when surface.file is empty");
-  Number("surface.edge_length", &s.edge_length, kPositive, "generator: target triangle edge length, m");
-  Number("surface.width", &s.width, kPositive, "generator: x extent, m (disk, annulus: outer diameter)");
-  Number("surface.depth", &s.depth, kPositive, "generator: y extent, m (annulus: inner diameter)");
-  Number("surface.rise", &s.rise, kNonNegative, "generator: crown height above the supports, m (dome, hypar, barrel)");
+  Number("surface.edge_length", &s.edge_length, Positive(kMaxLength), "generator: target triangle edge length, m");
+  Number("surface.width", &s.width, Positive(kMaxLength), "generator: x extent, m (disk, annulus: outer diameter)");
+  Number("surface.depth", &s.depth, Positive(kMaxLength), "generator: y extent, m (annulus: inner diameter)");
+  Number("surface.rise", &s.rise, NonNegative(kMaxLength), "generator: crown height above the supports, m (dome, hypar, barrel)");
 
   Condition("boundary.default", &c->boundary.default_condition, "support of every boundary vertex unless a rule overrides it");
   Rules("boundary.rules", &c->boundary.rules,
         "list of {select, condition}, applied in order; select: all | outer | inner | corners | {loop: N} | "
         "{box: [xmin, ymin, zmin, xmax, ymax, zmax]} | {ids: [...]} | {ids_file: PATH}");
 
-  Number("load.q", &c->load.q, kPositive, "dead load per area for the membrane solve, N/m²");
-  Number("membrane.stiffness", &c->membrane.stiffness, kPositive, "λ_m, membrane stiffness, N/m: v scales with 1/λ_m; the strain directions depend on it only through ε's quadratic term ½∇v∇vᵀ");
-  Number("membrane.bending", &c->membrane.bending, kNonNegative, "λ_b, bending stiffness, N·m (0 = pure membrane, as in the paper)");
+  Number("load.q", &c->load.q, Positive(kMaxPressure), "dead load per area for the membrane solve, N/m²");
+  Number("membrane.stiffness", &c->membrane.stiffness, AtLeast(1e-3, kMaxModulus), "λ_m, membrane stiffness, N/m: v scales with 1/λ_m; the strain directions depend on it only through ε's quadratic term ½∇v∇vᵀ");
+  Number("membrane.bending", &c->membrane.bending, NonNegative(kMaxModulus), "λ_b, bending stiffness, N·m (0 = pure membrane, as in the paper)");
 
   auto& g = c->guidance;
   Choice("guidance.source", &g.source, {"strain", "curvature", "file"},
@@ -323,16 +204,20 @@ KeyTable::KeyTable(Config* c) {
   Number("guidance.ramp", &g.ramp, kFraction, "alignment weight ramps from 0 to 1 over [threshold, threshold + ramp] × max");
   Path("guidance.file", &g.file, "guidance.source = file: per-face CSV id,dx,dy,dz[,weight]");
 
-  Number("layout.spacing", &c->layout.spacing, kPositive, "h, distance between neighbouring level lines, m");
+  Number("layout.spacing", &c->layout.spacing, Positive(kMaxLength), "h, distance between neighbouring level lines, m");
   Choice("layout.density", &c->layout.density, {"auto", "spacing", "panel_area"},
          "spacing: level lines h apart; panel_area: φ, ψ then scaled together so that the mean panel area is h² (equal node counts for layouts that cross at different angles); auto: panel_area in `compare`, spacing otherwise");
+  Integer("layout.max_panels", &c->layout.max_panels, 1, 100000000,
+          "refuse a layout.spacing that would give more panels than this, estimated as the surface's area / h² "
+          "(the level-set solve's and the extraction's time and memory grow with it)");
 
   auto& lw = c->levelset.weights;
-  Number("levelset.weights.alignment", &lw.alignment, kNonNegative, "φ's level lines follow the guidance field");
-  Number("levelset.weights.spacing", &lw.spacing, kNonNegative, "even spacing: h|∇φ| = 1, h|∇ψ| = 1");
-  Number("levelset.weights.smoothness", &lw.smoothness, kNonNegative, "gradient difference across interior edges");
-  Number("levelset.weights.conjugacy", &lw.conjugacy, kNonNegative, "the two families are conjugate: II(n×∇φ, n×∇ψ) = 0");
-  Number("levelset.weights.transversality", &lw.transversality, kNonNegative, "crossing angle of the families ≥ levelset.min_angle");
+  Number("levelset.weights.alignment", &lw.alignment, NonNegative(kMaxWeight), "φ's level lines follow the guidance field");
+  Number("levelset.weights.spacing", &lw.spacing, Positive(kMaxWeight),
+         "even spacing: h|∇φ| = 1, h|∇ψ| = 1 (> 0: without it nothing keeps the level lines apart)");
+  Number("levelset.weights.smoothness", &lw.smoothness, NonNegative(kMaxWeight), "gradient difference across interior edges");
+  Number("levelset.weights.conjugacy", &lw.conjugacy, NonNegative(kMaxWeight), "the two families are conjugate: II(n×∇φ, n×∇ψ) = 0");
+  Number("levelset.weights.transversality", &lw.transversality, NonNegative(kMaxWeight), "crossing angle of the families ≥ levelset.min_angle");
   Number("levelset.min_angle", &c->levelset.min_angle, Range{0.0, 90.0, true, true}, "minimum crossing angle of the two families, degrees");
   Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000, "Ceres iterations of the φ solve and of the ψ solve");
   Integer("levelset.joint_iterations", &c->levelset.joint_iterations, 0, 100000,
@@ -342,7 +227,7 @@ KeyTable::KeyTable(Config* c) {
   Bool("levelset.seams", &c->levelset.seams,
        "cut seams from the guidance's ±½ singularities and from holes to the boundary; φ, ψ jump by whole levels "
        "across them (branch points, as in the paper's curvature reference); false: single-valued φ, ψ");
-  Number("levelset.working_edge", &c->levelset.working_edge, kNonNegative,
+  Number("levelset.working_edge", &c->levelset.working_edge, NonNegative(kMaxLength),
          "edge length of the mesh φ, ψ are solved on, m (0: 0.4 h); a reference finer than 0.7 × this is remeshed");
 
   Number("extract.corner_angle", &c->extract.corner_angle, Range{0.0, 180.0, true, true}, "boundary turning angle above which a vertex is a corner, degrees");
@@ -350,31 +235,31 @@ KeyTable::KeyTable(Config* c) {
   Number("extract.boundary_tolerance", &c->extract.boundary_tolerance, Range{0.0, 1.0, false, true}, "mesh boundary edges further than this × h from a curved reference boundary get an extra boundary vertex (0: never)");
 
   auto& pw = c->planarize.weights;
-  Number("planarize.weights.planarity", &pw.planarity, kNonNegative, "faces planar");
-  Number("planarize.weights.closeness", &pw.closeness, kNonNegative, "vertices stay on the reference surface");
-  Number("planarize.weights.boundary", &pw.boundary, kNonNegative, "boundary vertices stay on the reference boundary");
-  Number("planarize.weights.fairness", &pw.fairness, kNonNegative, "second differences along the mesh polylines");
-  Number("planarize.weights.anchor", &pw.anchor, kNonNegative, "vertices stay near where the layout put them");
-  Number("planarize.weights.edge_length", &pw.edge_length, kNonNegative,
+  Number("planarize.weights.planarity", &pw.planarity, NonNegative(kMaxWeight), "faces planar");
+  Number("planarize.weights.closeness", &pw.closeness, NonNegative(kMaxWeight), "vertices stay on the reference surface");
+  Number("planarize.weights.boundary", &pw.boundary, NonNegative(kMaxWeight), "boundary vertices stay on the reference boundary");
+  Number("planarize.weights.fairness", &pw.fairness, NonNegative(kMaxWeight), "second differences along the mesh polylines");
+  Number("planarize.weights.anchor", &pw.anchor, NonNegative(kMaxWeight), "vertices stay near where the layout put them");
+  Number("planarize.weights.edge_length", &pw.edge_length, NonNegative(kMaxWeight),
          "× the planarity weight: no edge shrinks below a quarter of its extracted length (or of h); 0: off");
-  Number("planarize.target_delta", &c->planarize.target_delta, kPositive, "stop when max planarity δ ≤ target_delta");
+  Number("planarize.target_delta", &c->planarize.target_delta, Positive(1.0), "stop when max planarity δ ≤ target_delta");
   Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (planarity weight raised after each)");
 
   auto& a = c->analysis;
-  Number("analysis.panel_load", &a.panel_load, kNonNegative, "panel dead load, N/m² of face area");
-  Number("analysis.gravity", &a.gravity, kNonNegative, "g, m/s²");
+  Number("analysis.panel_load", &a.panel_load, NonNegative(kMaxPressure), "panel dead load, N/m² of face area");
+  Number("analysis.gravity", &a.gravity, NonNegative(1e3), "g, m/s²");
   Bool("analysis.export_calculix", &a.export_calculix, "also write analysis/model.inp for CalculiX");
   Choice("analysis.calculix_element", &a.calculix_element, {"u1", "b32r"},
          "CalculiX beam: u1 = ccx's 2-node beam with the model's Euler–Bernoulli stiffness; b32r = 3-node beam ccx expands to bricks of the true section");
   Integer("analysis.calculix_subdivisions", &a.calculix_subdivisions, 1, 64, "CalculiX elements per member (b32r converges as this grows)");
-  Number("analysis.material.youngs_modulus", &a.material.youngs_modulus, kPositive, "E, Pa");
+  Number("analysis.material.youngs_modulus", &a.material.youngs_modulus, Positive(kMaxModulus), "E, Pa");
   Number("analysis.material.poisson_ratio", &a.material.poisson_ratio, Range{-1.0, 0.5, true, true}, "ν; G = E / (2(1+ν))");
-  Number("analysis.material.density", &a.material.density, kNonNegative, "ρ, kg/m³");
+  Number("analysis.material.density", &a.material.density, NonNegative(1e6), "ρ, kg/m³");
   Choice("analysis.section.shape", &a.section.shape, {"circular_hollow", "rectangular_hollow"}, "member cross-section");
-  Number("analysis.section.diameter", &a.section.diameter, kPositive, "circular hollow: outside diameter D, m");
-  Number("analysis.section.thickness", &a.section.thickness, kPositive, "wall thickness t, m");
-  Number("analysis.section.width", &a.section.width, kPositive, "rectangular hollow: width (in the surface), m");
-  Number("analysis.section.height", &a.section.height, kPositive, "rectangular hollow: height (along the surface normal), m");
+  Number("analysis.section.diameter", &a.section.diameter, Positive(100.0), "circular hollow: outside diameter D, m");
+  Number("analysis.section.thickness", &a.section.thickness, Positive(100.0), "wall thickness t, m");
+  Number("analysis.section.width", &a.section.width, Positive(100.0), "rectangular hollow: width (in the surface), m");
+  Number("analysis.section.height", &a.section.height, Positive(100.0), "rectangular hollow: height (along the surface normal), m");
 }
 
 int EditDistance(const std::string& a, const std::string& b) {
@@ -413,13 +298,15 @@ Status ApplyMapping(const YAML::Node& node, const std::string& prefix, const std
   std::set<std::string> seen;
   for (const auto& kv : node) {
     const std::string where = source + ":" + std::to_string(kv.first.Mark().line + 1);
-    if (!kv.first.IsScalar()) return Status::InvalidInput(where + ": keys must be plain names");
-    const std::string name = kv.first.Scalar();
+    std::string name;
+    if (!KeyName(kv.first, &name))
+      return Status::InvalidInput(where + ": keys must be plain names, got " + Describe(kv.first) +
+                                  (prefix.empty() ? "" : " in section " + prefix));
     const std::string key = prefix.empty() ? name : prefix + "." + name;
     if (!seen.insert(name).second) return Status::InvalidInput(where + ": " + key + ": duplicate key");
     if (const KeyEntry* entry = table->Find(key)) {
       const std::string error = entry->set(kv.second);
-      if (!error.empty()) return Status::InvalidInput(where + ": " + key + ": " + error);
+      if (!error.empty()) return Status::InvalidInput(where + ": " + KeyError(key, error));
       set_keys->insert(key);
     } else if (table->IsSection(key)) {
       if (kv.second.IsNull()) continue;  // an empty section
@@ -452,8 +339,27 @@ Status ApplyOverride(const std::string& assignment, KeyTable* table, std::string
     return Status::InvalidInput(where + ": " + key + ": value is not valid YAML: " + e.msg);
   }
   const std::string error = entry->set(value);
-  if (!error.empty()) return Status::InvalidInput(where + ": " + key + ": " + error);
+  if (!error.empty()) return Status::InvalidInput(where + ": " + KeyError(key, error));
   *key_out = key;
+  return Status::Ok();
+}
+
+// Keys that are valid one by one but not together.
+Status CheckKeysTogether(const Config& c, const std::string& source) {
+  auto refuse = [&](const std::string& message) { return Status::InvalidInput(source + ": " + message); };
+  if (c.guidance.source == "file" && c.guidance.file.empty())
+    return refuse("guidance.file: required when guidance.source is file");
+  const SectionOptions& section = c.analysis.section;
+  const bool circular = section.shape == "circular_hollow";
+  const double smallest = circular ? section.diameter : std::min(section.width, section.height);
+  if (!(2.0 * section.thickness < smallest))
+    return refuse("analysis.section.thickness: " + FormatNumber(section.thickness) + " m leaves no hollow in a " +
+                  (circular ? "tube of analysis.section.diameter " : "box whose smaller side is ") +
+                  FormatNumber(smallest) + " m (it must be less than half of that)");
+  const AnalysisOptions& a = c.analysis;
+  if (a.panel_load == 0.0 && a.material.density * a.gravity == 0.0)
+    return refuse("analysis.panel_load: the frame carries no load (analysis.panel_load and the steel's weight, "
+                  "analysis.material.density × analysis.gravity, are both 0), so its compliance would be 0");
   return Status::Ok();
 }
 
@@ -465,11 +371,13 @@ Status ParseConfig(const std::string& yaml_text, const std::string& source_name,
   *config = Config();
   KeyTable table(config);
   table.set_base_dir(base_dir);
+  table.set_source(source_name, true);
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    return Status::InvalidInput(source_name + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    return Status::InvalidInput(source_name + line + ": YAML syntax error: " + e.msg);
   }
   std::set<std::string> file_keys;
   if (!root.IsNull()) {
@@ -483,6 +391,7 @@ Status ParseConfig(const std::string& yaml_text, const std::string& source_name,
   if (!surface.file.empty()) surface.generator.clear();
 
   table.set_base_dir("");  // paths given on the command line are relative to the working directory
+  table.set_source("--set boundary.rules", false);
   for (const auto& assignment : overrides) {
     std::string key;
     PQ_RETURN_IF_ERROR(ApplyOverride(assignment, &table, &key));
@@ -492,13 +401,14 @@ Status ParseConfig(const std::string& yaml_text, const std::string& source_name,
   }
   if (surface.file.empty() && surface.generator.empty())
     return Status::InvalidInput(source_name + ": surface: set surface.file or surface.generator");
-  return Status::Ok();
+  return CheckKeysTogether(*config, source_name);
 }
 
 Status LoadConfig(const std::string& path, const std::vector<std::string>& overrides, Config* config) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return Status::InvalidInput(path + ": config file not found");
+  if (!fs::exists(path, ec)) return Status::InvalidInput(path + ": config file not found");
+  if (!fs::is_regular_file(path, ec)) return Status::InvalidInput(path + ": not a config file (a folder?)");
   std::ifstream in(path);
   if (!in) return Status::InvalidInput(path + ": cannot read config file");
   std::stringstream text;

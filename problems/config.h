@@ -33,7 +33,7 @@ struct BoundarySelector {
 struct BoundaryRule {
   BoundarySelector select;
   BoundaryCondition condition = BoundaryCondition::kFixed;
-  std::string origin;  // where the rule was written ("file.yaml:12"), for error messages
+  std::string origin;  // where the rule was written ("file.yaml:12" or "--set boundary.rules"), for messages
 };
 
 struct SurfaceOptions {
@@ -74,6 +74,9 @@ struct LayoutOptions {
   // spacing for `run` and `sweep`, panel_area for `compare` (a structural comparison is only
   // fair at equal node counts, as in the paper).
   std::string density = "auto";
+  // Refuse a spacing that would give more panels than this, estimated as area / h² before
+  // anything is solved: the level-set solve's and the extraction's time and memory grow with it.
+  int max_panels = 100000;
 };
 
 // Defaults from a weight sweep on the Great Court (README, "Level sets"): the terms are

@@ -99,6 +99,10 @@ Status OutputFiles::Open(const std::string& final_dir, std::unique_ptr<OutputFil
   if (fs::exists(target, ec) && !fs::is_directory(target, ec))
     return Status::InvalidInput(final_dir + ": output path exists and is not a folder");
   const fs::path parent = target.parent_path();
+  // The folders this creates above the output folder, deepest first: a failed run removes
+  // them again (if still empty), so that it leaves nothing behind.
+  std::vector<std::string> created;
+  for (fs::path p = parent; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created.push_back(p.string());
   fs::create_directories(parent, ec);
   if (ec) return Status::InvalidInput(final_dir + ": cannot create output folder: " + ec.message());
   RemoveStaleStaging(target);
@@ -106,12 +110,15 @@ Status OutputFiles::Open(const std::string& final_dir, std::unique_ptr<OutputFil
   fs::create_directories(staging, ec);
   if (ec) return Status::InvalidInput(final_dir + ": cannot write in " + parent.string() + ": " + ec.message());
   out->reset(new OutputFiles(target.string(), staging.string()));
+  (*out)->created_parents_ = std::move(created);
   return Status::Ok();
 }
 
 OutputFiles::~OutputFiles() {
   std::error_code ec;
-  if (!committed_) fs::remove_all(staging_dir_, ec);
+  if (committed_) return;
+  fs::remove_all(staging_dir_, ec);
+  for (const auto& dir : created_parents_) fs::remove(dir, ec);  // only if empty
 }
 
 std::string OutputFiles::Path(const std::string& relative) {
@@ -153,6 +160,15 @@ Status OutputFiles::Commit() {
   committed_ = true;
   fs::remove_all(staging, ec);
   return Status::Ok();
+}
+
+Status OutputFiles::InFinalFolder(const Status& status) const {
+  if (status.ok()) return status;
+  std::string message = status.message();
+  for (size_t at = message.find(staging_dir_); at != std::string::npos;
+       at = message.find(staging_dir_, at + final_dir_.size()))
+    message.replace(at, staging_dir_.size(), final_dir_);
+  return status.code() == StatusCode::kInvalidInput ? Status::InvalidInput(message) : Status::Internal(message);
 }
 
 }  // namespace pqlayout

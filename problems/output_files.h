@@ -34,6 +34,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/status.h"
 
@@ -53,6 +54,10 @@ class OutputFiles {
   // folder as it was, if SIGINT/SIGTERM has been received (geometry/interrupt.h); once
   // started it runs to the end.
   Status Commit();
+  // status with the staging folder's path in its message replaced by the output folder's:
+  // a failed run's message names the output file as the user knows it, not a staging path
+  // that is deleted when the run ends.
+  Status InFinalFolder(const Status& status) const;
 
   const std::string& final_dir() const { return final_dir_; }
   const std::string& staging_dir() const { return staging_dir_; }
@@ -61,6 +66,7 @@ class OutputFiles {
   OutputFiles(std::string final_dir, std::string staging_dir)
       : final_dir_(std::move(final_dir)), staging_dir_(std::move(staging_dir)) {}
   std::string final_dir_, staging_dir_;
+  std::vector<std::string> created_parents_;  // made by Open, removed again unless committed
   bool committed_ = false;
 };
 

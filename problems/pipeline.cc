@@ -5,7 +5,9 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include "geometry/interrupt.h"
 #include "problems/build_info.h"
@@ -25,6 +27,31 @@ double PeakResidentMegabytes() {
     if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
   return -1.0;
 }
+
+// Collects the warnings logged while it lives, for report.json ("warnings"): a run that
+// finishes with a warning (δ above target, cells left out, vertices dropped) says so in its
+// report too, not only on the console.
+class WarningCollector : public google::LogSink {
+ public:
+  WarningCollector() { google::AddLogSink(this); }
+  ~WarningCollector() override { google::RemoveLogSink(this); }
+  WarningCollector(const WarningCollector&) = delete;
+
+  void send(google::LogSeverity severity, const char*, const char*, int, const google::LogMessageTime&,
+            const char* message, size_t length) override {
+    if (severity != google::GLOG_WARNING) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    warnings_.emplace_back(message, length);
+  }
+  std::vector<std::string> warnings() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return warnings_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<std::string> warnings_;
+};
 
 struct StageEntry {
   Stage stage;
@@ -82,6 +109,7 @@ std::optional<Stage> StageFromName(const std::string& name) {
 
 Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::json* report) {
   const auto run_start = std::chrono::steady_clock::now();
+  const WarningCollector warnings;
   std::unique_ptr<OutputFiles> out;
   PQ_RETURN_IF_ERROR(OutputFiles::Open(options.out_dir, &out));
 
@@ -106,7 +134,7 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     LOG(INFO) << entry.name << ": started";
     const auto stage_start = std::chrono::steady_clock::now();
     nlohmann::json metrics = nlohmann::json::object();
-    PQ_RETURN_IF_ERROR(entry.run(&state, out.get(), &metrics));
+    PQ_RETURN_IF_ERROR(out->InFinalFolder(entry.run(&state, out.get(), &metrics)));
     metrics["seconds"] = SecondsSince(stage_start);
     if (const double peak = PeakResidentMegabytes(); peak > 0.0) metrics["peak_memory_mb"] = peak;
     (*report)["stages"][entry.name] = metrics;
@@ -115,8 +143,9 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
   }
   (*report)["run"]["completed_stages"] = completed;
   (*report)["run"]["total_seconds"] = SecondsSince(run_start);
-  PQ_RETURN_IF_ERROR(out->WriteText("report.json", report->dump(2) + "\n"));
-  PQ_RETURN_IF_ERROR(WriteReportHtml(*report, out.get()));
+  (*report)["warnings"] = warnings.warnings();
+  PQ_RETURN_IF_ERROR(out->InFinalFolder(out->WriteText("report.json", report->dump(2) + "\n")));
+  PQ_RETURN_IF_ERROR(out->InFinalFolder(WriteReportHtml(*report, out.get())));
   PQ_RETURN_IF_ERROR(out->Commit());
   LOG(INFO) << "wrote " << out->final_dir() << " in " << SecondsSince(run_start) << " s";
   return Status::Ok();

@@ -237,6 +237,9 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
               {"total_load", -total_load},
               {"sum_of_reactions", {reactions.x(), reactions.y(), reactions.z()}}};
   LOG(INFO) << "analyze: " << n << " nodes, " << model.members.size() << " members";
+  if (supported == static_cast<int>(model.nodes.size()))
+    LOG(WARNING) << "analyze: every node of the grid shell is supported, so nothing deflects and the compliance "
+                 << r.compliance << " J says nothing about the layout (use a smaller layout.spacing)";
   if (frame.joints > 0)
     LOG(INFO) << "analyze: " << frame.joints << " mesh edge(s) shorter than the section depth "
               << SectionDepth(state->config.analysis.section) << " m merged into joints: " << model.nodes.size()

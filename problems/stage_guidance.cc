@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -87,54 +88,123 @@ Status ComputeCurvatureGuidance(const SurfaceModel& surface, const GuidanceOptio
   return Status::Ok();
 }
 
+namespace {
+
+// One data line of a guidance file: its words and their values.
+struct GuidanceRow {
+  std::vector<std::string> words;
+  std::vector<double> values;
+  bool numeric = true;
+};
+
+GuidanceRow SplitRow(std::string line) {
+  std::replace(line.begin(), line.end(), ',', ' ');
+  std::istringstream words(line);
+  GuidanceRow row;
+  std::string word;
+  while (words >> word) {
+    char* end = nullptr;
+    row.values.push_back(std::strtod(word.c_str(), &end));
+    row.numeric = row.numeric && *end == '\0';
+    row.words.push_back(word);
+  }
+  return row;
+}
+
+// The face a row is for. The id is range-checked as a double before the cast: NaN or 1e300
+// cast to int is undefined behaviour.
+Status RowFace(const GuidanceRow& row, int num_faces, int* face) {
+  const double id = row.values[0];
+  if (!(id >= 0.0 && id < num_faces && id == std::floor(id)))
+    return Status::InvalidInput("face id '" + row.words[0] + "' is not a face of the surface (ids 0 to " +
+                                std::to_string(num_faces - 1) + ")");
+  *face = static_cast<int>(id);
+  return Status::Ok();
+}
+
+// The row's direction projected onto face f's plane, scaled down first so that the
+// projection cannot overflow; *magnitude is its length (0: no direction on this face).
+Status RowDirection(const GuidanceRow& row, const Eigen::Vector3d& n, Eigen::Vector3d* unit, double* magnitude) {
+  const Eigen::Vector3d d(row.values[1], row.values[2], row.values[3]);
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(d[k]))
+      return Status::InvalidInput("d" + std::string(1, "xyz"[k]) + " is '" + row.words[1 + k] + "', not a finite number");
+  const double largest = d.cwiseAbs().maxCoeff();
+  *magnitude = 0.0;
+  if (largest == 0.0) return Status::Ok();
+  const Eigen::Vector3d scaled = d / largest;
+  const Eigen::Vector3d tangent = scaled - n * n.dot(scaled);
+  if (tangent.norm() <= 1e-9) return Status::Ok();  // normal to the face: no direction in it
+  *unit = tangent.normalized();
+  *magnitude = largest * tangent.norm();
+  if (!std::isfinite(*magnitude)) return Status::InvalidInput("direction is too long to measure");
+  return Status::Ok();
+}
+
+}  // namespace
+
 Status ReadGuidanceFile(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field) {
   const std::string& path = options.file;
   if (path.empty()) return Status::InvalidInput("guidance.file: required when guidance.source is file");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return Status::InvalidInput(path + ": guidance file not found");
+  if (!std::filesystem::is_regular_file(path, ec)) return Status::InvalidInput(path + ": not a guidance file (a folder?)");
   std::ifstream in(path);
-  if (!in) return Status::InvalidInput(path + ": guidance file not found");
-  Resize(surface.num_faces(), field);
-  std::vector<double> given_weight(surface.num_faces(), -1.0);
-  std::vector<char> seen(surface.num_faces(), 0);
+  if (!in) return Status::InvalidInput(path + ": cannot read the guidance file");
+  const int num_faces = surface.num_faces();
+  Resize(num_faces, field);
+  std::vector<double> given_weight(num_faces, 0.0);
+  std::vector<int> line_of_face(num_faces, 0);
+  size_t columns = 0;  // 4 or 5, fixed by the first data line
   std::string line;
-  bool has_weights = false;
   for (int line_number = 1; std::getline(in, line); ++line_number) {
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream words(line);
-    std::vector<double> values;
-    std::string word;
-    bool numeric = true;
-    while (words >> word) {
-      char* end = nullptr;
-      values.push_back(std::strtod(word.c_str(), &end));
-      numeric = numeric && *end == '\0';
-    }
-    if (values.empty() || (!numeric && line_number == 1)) continue;  // blank line or header
-    const std::string where = path + ":" + std::to_string(line_number) + ": ";
-    if (!numeric || (values.size() != 4 && values.size() != 5))
-      return Status::InvalidInput(where + "expected id,dx,dy,dz[,weight]");
-    const int f = static_cast<int>(values[0]);
-    if (values[0] != f || f < 0 || f >= surface.num_faces())
-      return Status::InvalidInput(where + "face id " + word + " out of range (the surface has " +
-                                  std::to_string(surface.num_faces()) + " faces)");
-    if (seen[f]) return Status::InvalidInput(where + "face " + std::to_string(f) + " appears twice");
-    seen[f] = 1;
-    const Eigen::Vector3d& n = surface.face_normal(f);
-    const Eigen::Vector3d d(values[1], values[2], values[3]);
-    const Eigen::Vector3d tangent = d - n * n.dot(d);
-    field->magnitude[f] = tangent.norm();
-    if (tangent.norm() > 0.0) field->direction[f] = tangent.normalized();
-    if (values.size() == 5) {
-      if (!(values[4] >= 0.0 && values[4] <= 1.0))
-        return Status::InvalidInput(where + "weight must be in [0, 1]");
-      given_weight[f] = values[4];
-      has_weights = true;
+    const GuidanceRow row = SplitRow(line);
+    if (row.values.empty() || (!row.numeric && line_number == 1)) continue;  // blank line or header
+    const std::string where = path + ":" + std::to_string(line_number);
+    if (!row.numeric || (row.values.size() != 4 && row.values.size() != 5))
+      return Status::InvalidInput(where + ": expected id,dx,dy,dz[,weight]");
+    if (columns == 0) columns = row.values.size();
+    if (row.values.size() != columns)
+      return Status::InvalidInput(where + ": " + std::to_string(row.values.size()) + " values, but the first line has " +
+                                  std::to_string(columns) + " (give a weight on every line or on none)");
+    int f = -1;
+    PQ_RETURN_IF_ERROR(RowFace(row, num_faces, &f).WithContext(where));
+    if (line_of_face[f] > 0)
+      return Status::InvalidInput(where + ": face " + std::to_string(f) + " appears twice (first on line " +
+                                  std::to_string(line_of_face[f]) + ")");
+    line_of_face[f] = line_number;
+    PQ_RETURN_IF_ERROR(RowDirection(row, surface.face_normal(f), &field->direction[f], &field->magnitude[f])
+                           .WithContext(where + ": face " + std::to_string(f)));
+    if (columns == 5) {
+      const double w = row.values[4];
+      if (!(w >= 0.0 && w <= 1.0))
+        return Status::InvalidInput(where + ": weight must be in [0, 1], got '" + row.words[4] + "'");
+      if (w > 0.0 && field->magnitude[f] == 0.0)
+        return Status::InvalidInput(where + ": face " + std::to_string(f) + " has weight " + row.words[4] +
+                                    " but no direction (zero, or normal to the face)");
+      given_weight[f] = w;
     }
   }
-  const auto missing = std::find(seen.begin(), seen.end(), 0);
-  if (missing != seen.end())
-    return Status::InvalidInput(path + ": no direction for face " + std::to_string(missing - seen.begin()));
+  const auto missing = std::find(line_of_face.begin(), line_of_face.end(), 0);
+  if (missing != line_of_face.end())
+    return Status::InvalidInput(path + ": no direction for face " + std::to_string(missing - line_of_face.begin()) +
+                                " (the surface has " + std::to_string(num_faces) + " faces)");
   field->scale = *std::max_element(field->magnitude.begin(), field->magnitude.end());
-  field->weight = has_weights ? given_weight : AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
+  if (!(field->scale > 0.0))
+    return Status::InvalidInput(path + ":" + std::to_string(line_of_face[0]) +
+                                ": every direction is zero or normal to the surface (this line is face 0's): "
+                                "there is no guidance to follow");
+  for (int f = 0; f < num_faces; ++f) {
+    // Faces without a direction get a unit one in their plane (the field's invariant) and no
+    // weight, so that no solver ever normalises a zero vector.
+    if (field->magnitude[f] > 0.0) continue;
+    const auto ids = surface.face_vertices(f);
+    field->direction[f] = (surface.position(ids[1]) - surface.position(ids[0])).normalized();
+  }
+  field->weight = columns == 5 ? given_weight
+                                : AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
+  for (int f = 0; f < num_faces; ++f)
+    if (field->magnitude[f] == 0.0) field->weight[f] = 0.0;
   return Status::Ok();
 }
 

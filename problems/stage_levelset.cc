@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numeric>
 #include <queue>
+#include <sstream>
 
 #include "geometry/closest_point.h"
 #include "geometry/differential_operators.h"
@@ -1019,6 +1020,16 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
             << ", conjugacy " << m.conjugacy_rms << ", min crossing " << m.min_crossing_angle_deg << "° ("
             << m.faces_below_min_angle << " faces below " << state->config.levelset.min_angle << "°), "
             << m.foldovers << " fold-overs";
+  // The layout is still written, but the run must say that its quads are not what was asked for.
+  if (m.foldovers > 0 || m.faces_below_min_angle > 0) {
+    std::ostringstream what;
+    what.precision(3);
+    what << m.faces_below_min_angle << " faces (" << 100.0 * m.area_below_min_angle << " % of the area) cross below "
+         << "levelset.min_angle " << state->config.levelset.min_angle << "° (the smallest at "
+         << m.min_crossing_angle_deg << "°): the quads there are sheared";
+    if (m.foldovers > 0) what << "; " << m.foldovers << " faces fold over: the quads there are inverted";
+    LOG(WARNING) << "levelset: " << what.str();
+  }
   PQ_RETURN_IF_ERROR(WriteLevelSetFigure(surface, phi_values, psi_values, h, state->guidance.direction,
                                          state->guidance.weight,
                                          "Level sets: φ (black) aligned with the guidance, ψ (blue) conjugate",

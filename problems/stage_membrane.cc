@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "geometry/differential_operators.h"
 #include "problems/figures.h"
@@ -107,9 +108,10 @@ Status RunMembraneStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   LOG(INFO) << "membrane: " << solution.n_unknowns << " unknowns, " << solution.n_dirichlet
             << " Dirichlet vertices; max |v_z| " << max_abs * 1000.0 << " mm (factor "
             << solution.factor_seconds << " s, residual " << solution.relative_residual << ")";
+  std::ostringstream q;  // not via int: a large q would overflow the cast
+  q << state->config.load.q;
   return WriteDisplacementFigure(surface, solution.v_z,
-                                 "Membrane displacement v_z under dead load q = " +
-                                     std::to_string(static_cast<int>(state->config.load.q)) + " N/m²",
+                                 "Membrane displacement v_z under dead load q = " + q.str() + " N/m²",
                                  out->Path("figures/displacement.svg"));
 }
 

@@ -4,6 +4,7 @@
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_metrics.h"
 #include "geometry/surface_generators.h"
+#include "problems/layout_checks.h"
 #include "problems/stages.h"
 
 namespace pqlayout {
@@ -42,6 +43,7 @@ Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   const SurfaceModel& surface = *state->surface;
   PQ_RETURN_IF_ERROR(ResolveBoundaryConditions(config.boundary, surface, config.extract.corner_angle,
                                                &state->supports));
+  PQ_RETURN_IF_ERROR(CheckSpacingFitsSurface(surface, config.layout, source));
 
   const TriangleQuality quality = MeasureTriangleQuality(surface.mesh());
   nlohmann::json loops = nlohmann::json::array();

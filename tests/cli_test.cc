@@ -2,13 +2,10 @@
 // on failure, --set precedence, --until, --version, and report.json's contract keys.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "tests/test_cli.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -16,32 +13,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code = -1;
-  std::string out, err;
-};
+using Result = testing::CliResult;
+using testing::CountLines;
+using testing::ReadFile;
+using testing::RunPqlayout;
 
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `pqlayout ARGS` in dir.
-Result RunPqlayout(const std::string& dir, const std::string& args) {
-  const std::string command = "cd '" + dir + "' && '" PQLAYOUT_BINARY "' " + args + " > stdout.txt 2> stderr.txt";
-  const int status = std::system(command.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = ReadAll(dir + "/stdout.txt");
-  r.err = ReadAll(dir + "/stderr.txt");
-  return r;
-}
-
-int CountLines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
-
-nlohmann::json ReadReport(const std::string& dir) { return nlohmann::json::parse(ReadAll(dir + "/report.json")); }
+nlohmann::json ReadReport(const std::string& dir) { return nlohmann::json::parse(ReadFile(dir + "/report.json")); }
 
 const char* kPlaneConfig =
     "surface:\n  generator: plane\n  width: 10\n  depth: 6\n  edge_length: 1.0\n"
@@ -79,13 +56,13 @@ TEST(Cli, RunWritesReportAndSurface) {
   EXPECT_FALSE(report["pqlayout"]["git_revision"].get<std::string>().empty());
   EXPECT_TRUE(report["pqlayout"]["libraries"].contains("Ceres"));
   // Field outputs (SPEC names and columns); fields.vtk carries every field for ParaView.
-  const std::string vertices = ReadAll(dir + "/result/fields/vertices.csv");
+  const std::string vertices = ReadFile(dir + "/result/fields/vertices.csv");
   EXPECT_EQ(vertices.rfind("id,x,y,z,vx,vy,vz\n", 0), 0u);
   EXPECT_EQ(CountLines(vertices), 1 + report["stages"]["surface"]["n_vertices"].get<int>());
-  const std::string faces = ReadAll(dir + "/result/fields/faces.csv");
+  const std::string faces = ReadFile(dir + "/result/fields/faces.csv");
   EXPECT_EQ(faces.rfind("id,dx,dy,dz,strain_max,strain_min,weight\n", 0), 0u);
   EXPECT_EQ(CountLines(faces), 1 + report["stages"]["surface"]["n_faces"].get<int>());
-  const std::string vtk = ReadAll(dir + "/result/fields.vtk");
+  const std::string vtk = ReadFile(dir + "/result/fields.vtk");
   EXPECT_NE(vtk.find("POINTS " + report["stages"]["surface"]["n_vertices"].dump() + " double"), std::string::npos);
   EXPECT_NE(vtk.find("CELL_DATA " + report["stages"]["surface"]["n_faces"].dump()), std::string::npos);
   for (const char* field : {"SCALARS v_z", "VECTORS guidance", "SCALARS weight", "SCALARS phi", "SCALARS psi"})
@@ -97,7 +74,7 @@ TEST(Cli, RunWritesReportAndSurface) {
     EXPECT_TRUE(report["stages"]["levelset"].contains(key)) << key;
   EXPECT_TRUE(report["stages"]["membrane"].contains("max_displacement"));
   // report.html: self-contained, every figure inlined, the metrics shown.
-  const std::string html = ReadAll(dir + "/result/report.html");
+  const std::string html = ReadFile(dir + "/result/report.html");
   EXPECT_EQ(html.find("src=\"http"), std::string::npos);   // nothing fetched from the network
   EXPECT_EQ(html.find("href=\"http"), std::string::npos);
   EXPECT_EQ(html.find("<img"), std::string::npos);
@@ -131,7 +108,7 @@ TEST(Cli, UntilStopsAfterTheStageAndRemovesStaleOutputs) {
 TEST(Cli, ReadsTheSurfaceFromAFile) {
   const auto dir = testing::TempDir();
   testing::WriteFile(dir, "roof.obj", testing::ObjText(testing::FlatGridSoup(4)));
-  testing::WriteFile(dir, "c.yaml", "surface:\n  file: roof.obj\nboundary:\n  default: free\n"
+  testing::WriteFile(dir, "c.yaml", "surface:\n  file: roof.obj\nlayout:\n  spacing: 1\nboundary:\n  default: free\n"
                                     "  rules:\n    - select: corners\n      condition: fixed\n");
   const Result r = RunPqlayout(dir, "run c.yaml --out o");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -155,12 +132,12 @@ TEST(Cli, BadInputGivesOneLineExitTwoAndNoOutput) {
       {"surface:\n  file: missing.obj\n", "", "missing.obj: file not found"},
       {"surface:\n  file: broken.obj\n", "", "broken.obj: face 0 is degenerate"},
       {"surface:\n  file: hostile.ply\n", "", "hostile.ply:3: 'property' before any 'element'"},
-      {"layout:\n  spacing: -3\n", "", "c.yaml:2: layout.spacing: must be > 0"},
+      {"layout:\n  spacing: -3\n", "", "c.yaml:2: layout.spacing: must be > 0 (got -3)"},
       {"", "--set layout.spacing=x", "--set layout.spacing=x: layout.spacing: expected a number"},
       {"", "--until levelsets", "--until: levelsets not in"},
       {"surface:\n  generator: plane\n  edge_length: 1e-7\n", "", "surface.edge_length"},
       {"boundary:\n  rules:\n    - select: inner\n      condition: free\n",
-       "--set surface.generator=plane --set surface.edge_length=2", "boundary.rules[0] (line 3): selects inner loops"},
+       "--set surface.generator=plane --set surface.edge_length=2", "c.yaml:3: boundary.rules[0]: selects inner loops"},
   };
   for (const auto& c : cases) {
     testing::WriteFile(dir, "c.yaml", c.config);
@@ -194,7 +171,7 @@ TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
     EXPECT_EQ(report["config"]["layout"]["density"], "panel_area") << source;
     EXPECT_GT(std::abs(report["stages"]["levelset"]["density_scale"].get<double>() - 1.0), 1e-6) << source;
   }
-  const auto comparison = nlohmann::json::parse(ReadAll(dir + "/cmp/compare.json"));
+  const auto comparison = nlohmann::json::parse(ReadFile(dir + "/cmp/compare.json"));
   bool has_mean = false;
   for (const auto& row : comparison["rows"]) {
     if (row["metric"] != "compliance_node_mean") continue;
@@ -206,12 +183,12 @@ TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
   }
   EXPECT_TRUE(has_mean);
   for (const char* figure : {"compliance_strain.svg", "compliance_curvature.svg"}) {
-    const std::string svg = ReadAll(dir + "/cmp/figures/" + figure);
+    const std::string svg = ReadFile(dir + "/cmp/figures/" + figure);
     EXPECT_EQ(svg.rfind("<svg", 0), 0u) << figure;
     EXPECT_NE(svg.find("nodal compliance [J]"), std::string::npos) << figure;
   }
   EXPECT_TRUE(fs::exists(dir + "/cmp/strain/figures/compliance.svg"));
-  const std::string table = ReadAll(dir + "/cmp/compare/table.md");
+  const std::string table = ReadFile(dir + "/cmp/compare/table.md");
   EXPECT_EQ(table.rfind("| metric | strain guidance | curvature guidance | strain vs curvature |", 0), 0u);
   for (size_t at = 0, line = 0; (at = table.find('\n', at)) != std::string::npos; ++at, ++line) {
     const size_t start = table.rfind('\n', at - 1);

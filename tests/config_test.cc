@@ -126,12 +126,12 @@ TEST(Config, BoundaryRules) {
   EXPECT_EQ(c.boundary.rules[1].condition, BoundaryCondition::kSliding);
   EXPECT_EQ(c.boundary.rules[2].select.ids_file, "/base/supports.txt");
   EXPECT_EQ(c.boundary.rules[3].select.loop, 1);
-  EXPECT_EQ(c.boundary.rules[1].origin, "line 6");
+  EXPECT_EQ(c.boundary.rules[1].origin, "cfg.yaml:6");  // messages say FILE:LINE
 
   ExpectError("boundary:\n  rules:\n    - select: inenr\n      condition: fixed\n", {},
-              "boundary.rules: [0].select: unknown selector 'inenr'");
+              "cfg.yaml:2: boundary.rules[0].select: unknown selector 'inenr'");  // the line of the key
   ExpectError("boundary:\n  rules:\n    - select: all\n      condition: glued\n", {},
-              "boundary.rules: [0].condition: expected one of fixed | free | clamped | sliding, got 'glued'");
+              "boundary.rules[0].condition: expected one of fixed | free | clamped | sliding, got 'glued'");
   ExpectError("boundary:\n  rules:\n    - select: all\n", {}, "[0]: a rule needs both select and condition");
   ExpectError("boundary:\n  rules:\n    - select: {box: [1, 2]}\n      condition: free\n", {},
               "box: expected [xmin, ymin, zmin, xmax, ymax, zmax]");
@@ -139,6 +139,73 @@ TEST(Config, BoundaryRules) {
   ASSERT_TRUE(Parse("", &c, {"boundary.rules=[{select: outer, condition: sliding}]"}).ok());
   ASSERT_EQ(c.boundary.rules.size(), 1u);
   EXPECT_EQ(c.boundary.rules[0].select.kind, BoundarySelector::Kind::kOuter);
+}
+
+// Hostile rules (issue 15): every malformed element is one message naming the rule, the
+// key and the element; none throws (a list as a key once escaped as "internal error").
+TEST(Config, HostileBoundaryRulesNameTheElement) {
+  ExpectError("boundary:\n  rules: [{select: {ids: [-1]}, condition: free}]\n", {},
+              "cfg.yaml:2: boundary.rules[0].select.ids: '-1' is not a vertex id");
+  ExpectError("boundary:\n  rules: [{select: {ids: [3, 1.5]}, condition: free}]\n", {},
+              "boundary.rules[0].select.ids: '1.5' is not a vertex id");
+  ExpectError("boundary:\n  rules: [{select: {ids: [99999999999]}, condition: free}]\n", {},
+              "boundary.rules[0].select.ids: '99999999999' is not a vertex id");
+  ExpectError("boundary:\n  rules: [{select: {ids: 3}, condition: free}]\n", {},
+              "boundary.rules[0].select.ids: expected a list of vertex ids, got '3'");
+  ExpectError("boundary:\n  rules: [{[a]: 1}]\n", {},
+              "cfg.yaml:2: boundary.rules[0]: expected the keys select and condition, got a list");
+  ExpectError("boundary:\n  rules: [{select: {[a]: 1}, condition: free}]\n", {},
+              "boundary.rules[0].select: expected all, outer, inner, corners, or a mapping");
+  ExpectError("boundary:\n  rules: [{select: {box: [0, 0, 0, 1, 1, .nan]}, condition: free}]\n", {},
+              "boundary.rules[0].select.box: expected [xmin, ymin, zmin, xmax, ymax, zmax]: '.nan' is not a finite number");
+  ExpectError("boundary:\n  rules: [{select: {loop: -1}, condition: free}]\n", {},
+              "boundary.rules[0].select.loop: expected a loop index >= 0, got '-1'");
+  ExpectError("boundary:\n  rules: {select: all}\n", {}, "cfg.yaml:2: boundary.rules: expected a list of {select");
+  ExpectError("", {"boundary.rules=[{select: all, condition: free}, {select: {ids: [-2]}, condition: free}]"},
+              "--set boundary.rules=[{select: all, condition: free}, {select: {ids: [-2]}, condition: free}]: "
+              "boundary.rules[1].select.ids: '-2' is not a vertex id");
+  Config c;
+  ASSERT_TRUE(Parse("", &c, {"boundary.rules=[{select: {ids: [0, 7]}, condition: free}]"}).ok());
+  EXPECT_EQ(c.boundary.rules[0].select.ids, std::vector<int>({0, 7}));
+  EXPECT_EQ(c.boundary.rules[0].origin, "--set boundary.rules");  // no line: it is not in the file
+}
+
+TEST(Config, NonScalarKeysAreOneLineErrors) {
+  ExpectError("[a]: 1\n", {}, "cfg.yaml:1: keys must be plain names, got a list");
+  ExpectError("layout:\n  {a: 1}: 2\n", {}, "cfg.yaml:2: keys must be plain names, got a mapping in section layout");
+  ExpectError("layout:\n  foo:\n    bar: 1\n", {}, "cfg.yaml:2: unknown key 'layout.foo'");
+  ExpectError("levelset:\n  weights:\n    alignment:\n      deep: 1\n", {},
+              "cfg.yaml:3: levelset.weights.alignment: expected a number, got a mapping");
+  ExpectError("a: *undefined\n", {}, "cfg.yaml:1: YAML syntax error");
+}
+
+// Absurd numbers are refused by name before any stage could overflow or cast them to int.
+TEST(Config, AbsurdNumbersAreRefusedByName) {
+  ExpectError("load:\n  q: 1e300\n", {}, "cfg.yaml:2: load.q: must be <= 1e+07 (got 1e+300)");
+  ExpectError("load:\n  q: .inf\n", {}, "load.q: must be a finite number");
+  ExpectError("membrane:\n  stiffness: 1e-300\n", {}, "membrane.stiffness: must be >= 0.001 (got 1e-300)");
+  ExpectError("surface:\n  width: 1e300\n", {}, "surface.width: must be <= 100000 (got 1e+300)");
+  ExpectError("layout:\n  spacing: 0\n", {}, "layout.spacing: must be > 0 (got 0)");
+  ExpectError("levelset:\n  weights:\n    alignment: 1e300\n", {}, "levelset.weights.alignment: must be <= 1e+06 (got 1e+300)");
+  ExpectError("levelset:\n  weights:\n    spacing: 0\n", {}, "levelset.weights.spacing: must be > 0 (got 0)");
+  ExpectError("planarize:\n  weights:\n    planarity: 1e300\n", {}, "planarize.weights.planarity: must be <= 1e+06");
+  ExpectError("analysis:\n  material:\n    youngs_modulus: 1e300\n", {}, "analysis.material.youngs_modulus: must be <= 1e+15");
+  ExpectError("layout:\n  max_panels: 0\n", {}, "layout.max_panels: must be in [1, 100000000] (got 0)");
+  ExpectError("guidance:\n  threshold: -0.1\n", {}, "guidance.threshold: must be in [0, 1] (got -0.1)");
+  Config c;
+  ASSERT_TRUE(Parse("load:\n  q: 1e7\nmembrane:\n  stiffness: 0.001\n", &c).ok());  // the bounds themselves
+  EXPECT_EQ(c.load.q, 1e7);
+}
+
+TEST(Config, KeysThatContradictEachOtherAreRefused) {
+  ExpectError("analysis:\n  section:\n    thickness: 0.06\n", {},
+              "cfg.yaml: analysis.section.thickness: 0.06 m leaves no hollow in a tube of analysis.section.diameter 0.1143 m");
+  ExpectError("analysis:\n  section:\n    shape: rectangular_hollow\n    thickness: 0.03\n", {},
+              "analysis.section.thickness: 0.03 m leaves no hollow in a box whose smaller side is 0.06 m");
+  ExpectError("guidance:\n  source: file\n", {}, "cfg.yaml: guidance.file: required when guidance.source is file");
+  ExpectError("analysis:\n  panel_load: 0\n  gravity: 0\n", {}, "analysis.panel_load: the frame carries no load");
+  Config c;
+  EXPECT_TRUE(Parse("analysis:\n  panel_load: 0\n", &c).ok());  // the steel's own weight is still a load
 }
 
 TEST(Config, ResolvedJsonMirrorsTheKeys) {
@@ -174,6 +241,9 @@ TEST(Config, LoadConfigReadsAFile) {
   const Status missing = LoadConfig(dir + "/none.yaml", {}, &c);
   EXPECT_EQ(missing.code(), StatusCode::kInvalidInput);
   EXPECT_NE(missing.message().find("none.yaml: config file not found"), std::string::npos);
+  const Status folder = LoadConfig(dir, {}, &c);
+  EXPECT_EQ(folder.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(folder.message().find(dir + ": not a config file (a folder?)"), std::string::npos) << folder.message();
 }
 
 }  // namespace

@@ -1,0 +1,343 @@
+// Hostile input (issue 15): ids, files, meshes and spacings a user can get wrong. Every case
+// is refused with one line naming the key, file or element (and exit 2, no output folder,
+// through the executable), or runs with a result that means something.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+#include "geometry/mesh_validation.h"
+#include "problems/boundary_conditions.h"
+#include "problems/guidance.h"
+#include "problems/layout_checks.h"
+#include "problems/output_files.h"
+#include "tests/test_cli.h"
+#include "tests/test_meshes.h"
+
+namespace pqlayout {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FlatGridSoup;
+
+void ExpectRefused(const Status& s, const std::string& expected) {
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput) << expected;
+  EXPECT_NE(s.message().find(expected), std::string::npos) << "message: " << s.message();
+  EXPECT_EQ(s.message().find('\n'), std::string::npos) << s.message();
+}
+
+// A 10 m × 10 m grid of unit squares with one triangle removed near its middle: a hole
+// 1.41 m across (the removed triangle's diagonal).
+PolygonSoup GridWithOneTriangleHole() {
+  PolygonSoup soup = FlatGridSoup(10);
+  soup.faces.erase(soup.faces.begin() + 2 * (5 * 10 + 5));
+  return soup;
+}
+
+// --- boundary ids -------------------------------------------------------------------------
+
+// One boundary rule on a 4 × 4 grid of unit squares (25 vertices, 16 on the boundary),
+// written at c.yaml:7.
+struct OneRule {
+  SurfaceModel surface{testing::ToMesh(FlatGridSoup(4))};
+  BoundaryRule rule;
+  VertexConditions conditions;
+
+  explicit OneRule(BoundarySelector::Kind kind) {
+    rule.select.kind = kind;
+    rule.origin = "c.yaml:7";
+  }
+  Status Resolve() {
+    BoundaryOptions options;
+    options.rules = {rule};
+    return ResolveBoundaryConditions(options, surface, 30.0, &conditions);
+  }
+};
+
+TEST(HostileIds, NegativeAndMissingIdsAreRefusedNotIndexed) {
+  OneRule r(BoundarySelector::Kind::kIds);
+  // Once `v >= n` only: -1 wrote before the per-vertex vector (heap corruption, exit 134).
+  for (const int id : {-1, -2147483647 - 1, 25, 1000}) {
+    r.rule.select.ids = {0, id};
+    ExpectRefused(r.Resolve(), "c.yaml:7: boundary.rules[0]: vertex " + std::to_string(id) +
+                                   " does not exist (the surface has 25 vertices, numbered from 0)");
+  }
+  r.rule.select.ids = {12};  // the grid's centre
+  ExpectRefused(r.Resolve(), "c.yaml:7: boundary.rules[0]: vertex 12 is not a boundary vertex");
+}
+
+TEST(HostileIds, IdsFileErrorsNameTheFileAndLine) {
+  const auto dir = testing::TempDir();
+  OneRule r(BoundarySelector::Kind::kIdsFile);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"0, 1\n# a comment\n-3\n",
+       "ids.txt:3: '-3' is not a vertex id (ids are whole numbers from 0) (c.yaml:7: boundary.rules[0])"},
+      {"0 1.5\n", "ids.txt:1: '1.5' is not a vertex id"},
+      {"99999999999999999999\n", "ids.txt:1: '99999999999999999999' is not a vertex id"},
+      {"0\n\n2 77\n",
+       "ids.txt:3: vertex 77 does not exist (the surface has 25 vertices, numbered from 0) (c.yaml:7: boundary.rules[0])"},
+      {"6\n", "ids.txt:1: vertex 6 is not a boundary vertex"},
+      {"# nothing\n", "c.yaml:7: boundary.rules[0]: selects no boundary vertex"},
+  };
+  for (const auto& [text, expected] : cases) {
+    r.rule.select.ids_file = testing::WriteFile(dir, "ids.txt", text);
+    ExpectRefused(r.Resolve(), expected);
+  }
+  r.rule.select.ids_file = dir;  // a folder opens as a stream on Linux and reads as empty
+  ExpectRefused(r.Resolve(), dir + ": not a vertex-id file (a folder?)");
+  r.rule.select.ids_file = testing::WriteFile(dir, "ids.txt", "0\r\n4\r\n");  // Windows line ends
+  r.rule.condition = BoundaryCondition::kFree;
+  ASSERT_TRUE(r.Resolve().ok());
+  EXPECT_EQ(r.conditions[0], BoundaryCondition::kFree);
+  EXPECT_EQ(r.conditions[4], BoundaryCondition::kFree);
+  EXPECT_EQ(r.conditions[1], BoundaryCondition::kFixed);  // boundary.default
+}
+
+// --- guidance file ------------------------------------------------------------------------
+
+Status ReadGuidance(const SurfaceModel& surface, const std::string& path, GuidanceField* field) {
+  GuidanceOptions options;
+  options.source = "file";
+  options.file = path;
+  return ReadGuidanceFile(surface, options, field);
+}
+
+// Rows "id,dx,dy,dz" for every face of an n × n grid (2 n² faces), direction (1, 0, 0).
+std::string Rows(int faces, const std::string& direction = "1,0,0") {
+  std::string text;
+  for (int f = 0; f < faces; ++f) text += std::to_string(f) + "," + direction + "\n";
+  return text;
+}
+
+TEST(HostileGuidance, EveryMalformedLineIsNamed) {
+  const auto dir = testing::TempDir();
+  const SurfaceModel surface(testing::ToMesh(FlatGridSoup(2)));  // 8 faces
+  GuidanceField field;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      // once exit 1 with Ceres' three-line report and a pointer address
+      {Rows(8, "0,0,0"), "g.csv:1: every direction is zero or normal to the surface"},
+      {"id,dx,dy,dz\n" + Rows(8, "0,0,2.5"), "g.csv:2: every direction is zero or normal to the surface"},
+      // once "face id 0" (the last word of the line) and a float-to-int cast of NaN
+      {"nan,1,0,0\n" + Rows(8), "g.csv:1: face id 'nan' is not a face of the surface (ids 0 to 7)"},
+      {"1e300,1,0,0\n", "g.csv:1: face id '1e300' is not a face of the surface"},
+      {"-1,1,0,0\n", "g.csv:1: face id '-1' is not a face of the surface"},
+      {"2.5,1,0,0\n", "g.csv:1: face id '2.5' is not a face of the surface"},
+      {"0,nan,0,0\n", "g.csv:1: face 0: dx is 'nan', not a finite number"},
+      {"0,1,inf,0\n", "g.csv:1: face 0: dy is 'inf', not a finite number"},
+      {"0,1,0\n", "g.csv:1: expected id,dx,dy,dz[,weight]"},
+      {"0,1,0,0,1\n1,1,0,0,x\n", "g.csv:2: expected id,dx,dy,dz[,weight]"},  // line 1 may be a header
+      {"0,1,0,0,1\n1,1,0,0\n", "g.csv:2: 4 values, but the first line has 5"},
+      {"0,1,0,0,1.5\n", "g.csv:1: weight must be in [0, 1], got '1.5'"},
+      {"0,1,0,0,nan\n", "g.csv:1: weight must be in [0, 1], got 'nan'"},
+      {"0,0,0,0,1\n", "g.csv:1: face 0 has weight 1 but no direction"},
+      {Rows(8) + "3,1,0,0\n", "g.csv:9: face 3 appears twice (first on line 4)"},
+      {Rows(7), "g.csv: no direction for face 7 (the surface has 8 faces)"},
+  };
+  for (const auto& [text, expected] : cases) {
+    const std::string path = testing::WriteFile(dir, "g.csv", text);
+    const Status s = ReadGuidance(surface, path, &field);
+    ExpectRefused(s, expected);
+    EXPECT_EQ(s.message().rfind(path, 0), 0u) << s.message();  // the file comes first
+  }
+  ExpectRefused(ReadGuidance(surface, dir, &field), dir + ": not a guidance file (a folder?)");
+  ExpectRefused(ReadGuidance(surface, dir + "/none.csv", &field), "none.csv: guidance file not found");
+}
+
+TEST(HostileGuidance, FacesWithoutADirectionGetAUnitOneAndNoWeight) {
+  const auto dir = testing::TempDir();
+  const SurfaceModel surface(testing::ToMesh(FlatGridSoup(2)));
+  std::string text = "0,0,0,0\n1,0,0,3\n";  // zero, and normal to the (flat) faces
+  for (int f = 2; f < 8; ++f) text += std::to_string(f) + ",1e308,1e308,0\n";  // huge but finite
+  GuidanceField field;
+  const Status s = ReadGuidance(surface, testing::WriteFile(dir, "g.csv", text), &field);
+  ASSERT_TRUE(s.ok()) << s.message();
+  for (int f = 0; f < 8; ++f) EXPECT_NEAR(field.direction[f].norm(), 1.0, 1e-12) << f;
+  EXPECT_EQ(field.weight[0], 0.0);
+  EXPECT_EQ(field.weight[1], 0.0);
+  EXPECT_EQ(field.weight[2], 1.0);
+  EXPECT_NEAR(field.direction[2].x(), std::sqrt(0.5), 1e-12);
+  EXPECT_TRUE(std::isfinite(field.scale));
+}
+
+// --- mesh validation ----------------------------------------------------------------------
+
+TEST(HostileMesh, AFarAwayUnusedVertexDoesNotMakeFacesDegenerate) {
+  PolygonSoup soup = FlatGridSoup(4);
+  soup.points.emplace_back(1e7, 0.0, 0.0);  // used by no face: dropped later, with a warning
+  EXPECT_TRUE(ValidateSurfaceSoup(soup).ok()) << ValidateSurfaceSoup(soup).message();
+  soup.points.back() = Eigen::Vector3d(NAN, 0.0, 0.0);  // unused and not finite: also dropped
+  EXPECT_TRUE(ValidateSurfaceSoup(soup).ok());
+  // Degeneracy stays relative to the used geometry: face 0 = (0, 1, 6) flattened to 1e-12 m
+  // in a 4 m grid is still refused, far vertex or not.
+  soup = FlatGridSoup(4);
+  soup.points[6] = Eigen::Vector3d(0.5, 1e-12, 0.0);
+  ExpectRefused(ValidateSurfaceSoup(soup), "face 0 is degenerate (zero area): vertices 0, 1, 6");
+  soup.points.emplace_back(1e7, 0.0, 0.0);
+  ExpectRefused(ValidateSurfaceSoup(soup), "face 0 is degenerate (zero area): vertices 0, 1, 6");
+}
+
+TEST(HostileMesh, ImplausibleCoordinatesAreRefused) {
+  PolygonSoup soup = FlatGridSoup(2);
+  soup.points[4].x() = 1e200;  // would overflow the squared lengths
+  ExpectRefused(ValidateSurfaceSoup(soup), "vertex 4 is at (1e+200, 1, 0), more than 1e+08 m from the origin");
+  soup.points[4].x() = -2e8;
+  ExpectRefused(ValidateSurfaceSoup(soup), "vertex 4 is at (-2e+08, 1, 0)");
+}
+
+// --- layout.spacing against the surface ---------------------------------------------------
+
+// layout.spacing = ok passes the checks; bad is refused with `expected`.
+void ExpectSpacingLimit(const SurfaceModel& surface, LayoutOptions layout, double ok, double bad,
+                        const std::string& source, const std::string& expected) {
+  layout.spacing = ok;
+  const Status passed = CheckSpacingFitsSurface(surface, layout, source);
+  EXPECT_TRUE(passed.ok()) << passed.message();
+  layout.spacing = bad;
+  ExpectRefused(CheckSpacingFitsSurface(surface, layout, source), expected);
+}
+
+TEST(HostileSpacing, ExtentIsMeasuredInTheBestFitPlane) {
+  // A 10 × 6 plane, rotated 30° about z and tilted 20° about x: still 10 × 6.
+  const Eigen::Matrix3d rotation = (Eigen::AngleAxisd(20.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()) *
+                                    Eigen::AngleAxisd(30.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()))
+                                       .toRotationMatrix();
+  TriMesh mesh = testing::GeneratedMesh("plane", 10.0, 6.0, 0.0, 1.0);
+  for (auto v : mesh.vertices()) mesh.set_point(v, ToOpenMesh(rotation * ToEigen(mesh.point(v))));
+  const SurfaceModel surface(std::move(mesh));
+  const SurfaceExtent extent = MeasureExtent(surface);
+  EXPECT_NEAR(extent.long_side, 10.0, 1e-3);  // the mesher's triangles tilt the axes slightly
+  EXPECT_NEAR(extent.short_side, 6.0, 1e-3);
+  ExpectSpacingLimit(surface, LayoutOptions(), 3.0, 3.01, "roof.obj",  // 3 m: exactly 2 panels across
+                     "layout.spacing: 3.01 m leaves fewer than 2 panels across the surface (roof.obj is 10 m × 6 m "
+                     "in its best-fit plane); use layout.spacing <= 3 m");
+}
+
+TEST(HostileSpacing, TooManyPanelsAreRefusedBeforeAnythingIsSolved) {
+  const SurfaceModel surface(testing::GeneratedMesh("plane", 10.0, 6.0, 0.0, 1.0));  // 60 m²
+  LayoutOptions layout;
+  layout.max_panels = 1000;
+  ExpectSpacingLimit(surface, layout, 0.245, 0.2, "generator plane",  // 999 and 1500 panels
+                     "layout.spacing: 0.2 m would give about 1500 panels on the 60 m² of generator plane (area / h²), "
+                     "more than layout.max_panels = 1000; use layout.spacing >= 0.245 m or raise layout.max_panels");
+  layout.spacing = 1e-300;  // area / h² = inf
+  ExpectRefused(CheckSpacingFitsSurface(surface, layout, "generator plane"), "would give about inf panels");
+}
+
+TEST(HostileSpacing, AHoleSmallerThanThePanelsIsRefused) {
+  const SurfaceModel surface(testing::ToMesh(GridWithOneTriangleHole()));
+  ASSERT_EQ(surface.boundary_loops().size(), 2u);
+  EXPECT_NEAR(LoopDiameterBelow(surface, 1, 100.0), std::sqrt(2.0), 1e-12);
+  ExpectSpacingLimit(surface, LayoutOptions(), 1.4, 2.0, "roof.obj",
+                     "layout.spacing: 2 m is larger than a hole in the surface (roof.obj: boundary loop 1 at (5.67, "
+                     "5.33, 0), 1.41 m across): no panel can frame it and the level lines tangle around it; fill the "
+                     "hole in the mesh or use layout.spacing < 1.41 m");
+}
+
+TEST(HostileOutput, MessagesNameTheOutputFolderNotTheStagingFolder) {
+  const auto dir = testing::TempDir();
+  std::unique_ptr<OutputFiles> out;
+  ASSERT_TRUE(OutputFiles::Open(dir + "/new/deeper/result", &out).ok());
+  const std::string staged = out->Path("figures/guidance.svg");
+  EXPECT_EQ(staged.find(dir + "/new/deeper/result/"), std::string::npos);  // it is staged elsewhere
+  const Status s = out->InFinalFolder(Status::InvalidInput(staged + ": |d| is not finite at face 0"));
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_EQ(s.message(), dir + "/new/deeper/result/figures/guidance.svg: |d| is not finite at face 0");
+  out.reset();  // not committed: the staging folder and the folders Open created are gone
+  EXPECT_FALSE(fs::exists(dir + "/new"));
+}
+
+// --- through the executable ---------------------------------------------------------------
+
+struct HostileRun {
+  std::string config, args, expected;
+};
+
+// Every case: exit 2, one line "pqlayout: error: ..." naming the key or file, and no output
+// folder (nor the folder above it, which the run had to create).
+TEST(HostileCli, EveryCaseIsOneLineExitTwoAndNoOutput) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "grid.obj", testing::ObjText(FlatGridSoup(10)));
+  testing::WriteFile(dir, "hole.obj", testing::ObjText(GridWithOneTriangleHole()));
+  testing::WriteFile(dir, "zero.csv", Rows(200, "0,0,0"));
+  testing::WriteFile(dir, "nan.csv", "nan,1,0,0\n" + Rows(200));
+  fs::create_directories(dir + "/adir");
+  const std::string grid = "surface:\n  file: grid.obj\nlayout:\n  spacing: 2\n";
+  const std::string plane = "surface: {generator: plane, width: 10, depth: 6, edge_length: 1}\n";
+  const std::vector<HostileRun> cases = {
+      {grid + "boundary:\n  rules: [{select: {ids: [-1]}, condition: free}]\n", "",
+       "c.yaml:6: boundary.rules[0].select.ids: '-1' is not a vertex id"},
+      {grid + "boundary:\n  rules: [{select: {ids: [500]}, condition: free}]\n", "",
+       "c.yaml:6: boundary.rules[0]: vertex 500 does not exist (the surface has 121 vertices"},
+      {grid + "boundary:\n  rules: [{select: {ids_file: adir}, condition: free}]\n", "", "adir: not a vertex-id file"},
+      {"[a]: 1\n", "", "c.yaml:1: keys must be plain names, got a list"},
+      {"boundary:\n  rules: [{[a]: 1}]\n", "", "c.yaml:2: boundary.rules[0]: expected the keys select and condition"},
+      {grid + "guidance:\n  source: file\n  file: zero.csv\n", "", "zero.csv:1: every direction is zero"},
+      {grid + "guidance:\n  source: file\n  file: nan.csv\n", "", "nan.csv:1: face id 'nan' is not a face of the surface"},
+      {grid + "guidance:\n  source: file\n  file: adir\n", "", "adir: not a guidance file (a folder?)"},
+      {"load:\n  q: 1e300\n", "", "c.yaml:2: load.q: must be <= 1e+07 (got 1e+300)"},
+      {plane + "layout: {spacing: 20}\n", "",
+       "layout.spacing: 20 m leaves fewer than 2 panels across the surface (generator plane is 10 m × 6 m"},
+      {plane + "layout: {spacing: 0.005}\n", "",
+       "layout.spacing: 0.005 m would give about 2400000 panels on the 60 m² of generator plane"},
+      {"surface:\n  file: hole.obj\nlayout:\n  spacing: 2\nboundary:\n  rules: [{select: inner, condition: free}]\n", "",
+       "layout.spacing: 2 m is larger than a hole in the surface (hole.obj: boundary loop 1"},
+      {"- a\n- b\n", "", "c.yaml: expected a mapping of config keys at the top level"},
+      {"surface:\n  file: adir\n", "", "adir: not a regular file"},
+      {"layout:\n  spacing: -1\n", "", "c.yaml:2: layout.spacing: must be > 0 (got -1)"},
+      {"", "--set layout.spacing=0", "--set layout.spacing=0: layout.spacing: must be > 0 (got 0)"},
+      {"guidance:\n  threshold: 2\n", "", "c.yaml:2: guidance.threshold: must be in [0, 1] (got 2)"},
+      {"layout:\n  foo:\n    bar: 1\n", "", "c.yaml:2: unknown key 'layout.foo'"},
+      {"levelset:\n  max_iterations: 2.5\n", "", "c.yaml:2: levelset.max_iterations: expected an integer, got '2.5'"},
+      {"levelset:\n  seams: maybe\n", "", "c.yaml:2: levelset.seams: expected true or false, got 'maybe'"},
+      {"surface:\n  file: [a]\n", "", "c.yaml:2: surface.file: expected a file path, got a list"},
+      {"guidance:\n  source: [strain]\n", "", "c.yaml:2: guidance.source: expected one of strain | curvature | file"},
+      {"boundary:\n  default: [fixed]\n", "", "c.yaml:2: boundary.default: expected one of fixed | free"},
+      {"layout:\n  spacing: {a: 1}\n", "", "c.yaml:2: layout.spacing: expected a number, got a mapping"},
+      {"levelset:\n  weights:\n    spacing: 0\n", "", "c.yaml:3: levelset.weights.spacing: must be > 0 (got 0)"},
+      {"analysis:\n  section:\n    thickness: 0.1\n", "", "c.yaml: analysis.section.thickness: 0.1 m leaves no hollow"},
+  };
+  for (const auto& c : cases) {
+    testing::WriteFile(dir, "c.yaml", c.config);
+    const testing::CliResult r = testing::RunPqlayout(dir, "run c.yaml -q --out out/result " + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.expected << "\n" << r.err;
+    EXPECT_EQ(testing::CountLines(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("pqlayout: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/out")) << c.expected;
+  }
+}
+
+TEST(HostileCli, AFarAwayUnusedVertexIsDroppedWithAWarningInTheReport) {
+  const auto dir = testing::TempDir();
+  PolygonSoup soup = FlatGridSoup(10);
+  soup.points.emplace_back(1e7, 0.0, 0.0);
+  testing::WriteFile(dir, "far.obj", testing::ObjText(soup));
+  testing::WriteFile(dir, "c.yaml", "surface:\n  file: far.obj\nlayout:\n  spacing: 2\n");
+  const testing::CliResult r = testing::RunPqlayout(dir, "run c.yaml --out result --until surface");
+  ASSERT_EQ(r.exit_code, 0) << r.err;  // once "face 0 is degenerate": the far vertex set the scale
+  const auto report = nlohmann::json::parse(testing::ReadFile(dir + "/result/report.json"));
+  EXPECT_EQ(report["stages"]["surface"]["n_vertices"], 121);
+  ASSERT_EQ(report["warnings"].size(), 1u) << report["warnings"];
+  EXPECT_NE(report["warnings"][0].get<std::string>().find("far.obj: ignored 1 vertices that no face uses"),
+            std::string::npos);
+}
+
+// A layout that misses what was asked for still exits 0, but says so in report.json.
+TEST(HostileCli, AnUnreachableCrossingAngleIsAWarningInTheReport) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "c.yaml",
+                     "surface: {generator: plane, width: 10, depth: 6, edge_length: 1}\nlayout: {spacing: 2}\n"
+                     "levelset: {min_angle: 89.9}\n");
+  const testing::CliResult r = testing::RunPqlayout(dir, "run c.yaml --out result --until levelset");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(testing::ReadFile(dir + "/result/report.json"));
+  const int below = report["stages"]["levelset"]["faces_below_min_angle"].get<int>();
+  EXPECT_GT(below, 0);
+  ASSERT_EQ(report["warnings"].size(), 1u) << report["warnings"];
+  EXPECT_EQ(report["warnings"][0].get<std::string>().rfind("levelset: " + std::to_string(below) + " faces (", 0), 0u)
+      << report["warnings"][0];
+  EXPECT_NE(report["warnings"][0].get<std::string>().find("cross below levelset.min_angle 89.9°"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pqlayout
