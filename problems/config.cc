@@ -62,6 +62,7 @@ constexpr double kMaxLength = 1e5;     // m: 100 km, no roof is larger
 constexpr double kMaxWeight = 1e6;     // residual weights (the README's sweeps stay below 1e4)
 constexpr double kMaxPressure = 1e7;   // N/m²: 1000 t per m²
 constexpr double kMaxModulus = 1e15;   // Pa, N/m, N·m
+constexpr double kMinSection = 1e-4;   // m: thinner members make the frame singular, not light
 
 // "key: reason", or "key[1].select: reason" when the reason starts with a list index.
 std::string KeyError(const std::string& key, const std::string& reason) {
@@ -252,14 +253,14 @@ KeyTable::KeyTable(Config* c) {
   Choice("analysis.calculix_element", &a.calculix_element, {"u1", "b32r"},
          "CalculiX beam: u1 = ccx's 2-node beam with the model's Euler–Bernoulli stiffness; b32r = 3-node beam ccx expands to bricks of the true section");
   Integer("analysis.calculix_subdivisions", &a.calculix_subdivisions, 1, 64, "CalculiX elements per member (b32r converges as this grows)");
-  Number("analysis.material.youngs_modulus", &a.material.youngs_modulus, Positive(kMaxModulus), "E, Pa");
+  Number("analysis.material.youngs_modulus", &a.material.youngs_modulus, AtLeast(1e6, kMaxModulus), "E, Pa");
   Number("analysis.material.poisson_ratio", &a.material.poisson_ratio, Range{-1.0, 0.5, true, true}, "ν; G = E / (2(1+ν))");
   Number("analysis.material.density", &a.material.density, NonNegative(1e6), "ρ, kg/m³");
   Choice("analysis.section.shape", &a.section.shape, {"circular_hollow", "rectangular_hollow"}, "member cross-section");
-  Number("analysis.section.diameter", &a.section.diameter, Positive(100.0), "circular hollow: outside diameter D, m");
-  Number("analysis.section.thickness", &a.section.thickness, Positive(100.0), "wall thickness t, m");
-  Number("analysis.section.width", &a.section.width, Positive(100.0), "rectangular hollow: width (in the surface), m");
-  Number("analysis.section.height", &a.section.height, Positive(100.0), "rectangular hollow: height (along the surface normal), m");
+  Number("analysis.section.diameter", &a.section.diameter, AtLeast(kMinSection, 100.0), "circular hollow: outside diameter D, m");
+  Number("analysis.section.thickness", &a.section.thickness, AtLeast(kMinSection, 100.0), "wall thickness t, m");
+  Number("analysis.section.width", &a.section.width, AtLeast(kMinSection, 100.0), "rectangular hollow: width (in the surface), m");
+  Number("analysis.section.height", &a.section.height, AtLeast(kMinSection, 100.0), "rectangular hollow: height (along the surface normal), m");
 }
 
 int EditDistance(const std::string& a, const std::string& b) {

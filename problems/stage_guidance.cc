@@ -122,13 +122,20 @@ Status RowFace(const GuidanceRow& row, int num_faces, int* face) {
   return Status::Ok();
 }
 
-// The row's direction projected onto face f's plane, scaled down first so that the
-// projection cannot overflow; *magnitude is its length (0: no direction on this face).
+// Larger direction components are refused: the field's magnitudes are drawn and compared
+// (1e308 made the figure's colour bar overflow an int cast).
+constexpr double kMaxComponent = 1e12;
+
+// The row's direction projected onto face f's plane, scaled to its largest component first
+// so that tiny vectors do not underflow; *magnitude is its length (0: no direction here).
 Status RowDirection(const GuidanceRow& row, const Eigen::Vector3d& n, Eigen::Vector3d* unit, double* magnitude) {
   const Eigen::Vector3d d(row.values[1], row.values[2], row.values[3]);
-  for (int k = 0; k < 3; ++k)
-    if (!std::isfinite(d[k]))
-      return Status::InvalidInput("d" + std::string(1, "xyz"[k]) + " is '" + row.words[1 + k] + "', not a finite number");
+  for (int k = 0; k < 3; ++k) {
+    const std::string name = "d" + std::string(1, "xyz"[k]) + " is '" + row.words[1 + k] + "'";
+    if (!std::isfinite(d[k])) return Status::InvalidInput(name + ", not a finite number");
+    if (std::abs(d[k]) > kMaxComponent)
+      return Status::InvalidInput(name + ", more than 1e12 in size (scale the field down)");
+  }
   const double largest = d.cwiseAbs().maxCoeff();
   *magnitude = 0.0;
   if (largest == 0.0) return Status::Ok();
@@ -137,7 +144,6 @@ Status RowDirection(const GuidanceRow& row, const Eigen::Vector3d& n, Eigen::Vec
   if (tangent.norm() <= 1e-9) return Status::Ok();  // normal to the face: no direction in it
   *unit = tangent.normalized();
   *magnitude = largest * tangent.norm();
-  if (!std::isfinite(*magnitude)) return Status::InvalidInput("direction is too long to measure");
   return Status::Ok();
 }
 

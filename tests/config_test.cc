@@ -190,6 +190,9 @@ TEST(Config, AbsurdNumbersAreRefusedByName) {
   ExpectError("levelset:\n  weights:\n    spacing: 0\n", {}, "levelset.weights.spacing: must be > 0 (got 0)");
   ExpectError("planarize:\n  weights:\n    planarity: 1e300\n", {}, "planarize.weights.planarity: must be <= 1e+06");
   ExpectError("analysis:\n  material:\n    youngs_modulus: 1e300\n", {}, "analysis.material.youngs_modulus: must be <= 1e+15");
+  ExpectError("analysis:\n  material:\n    youngs_modulus: 1e-300\n", {},
+              "analysis.material.youngs_modulus: must be >= 1e+06 (got 1e-300)");  // once "a mechanism"
+  ExpectError("analysis:\n  section:\n    diameter: 1e-300\n", {}, "analysis.section.diameter: must be >= 0.0001");
   ExpectError("layout:\n  max_panels: 0\n", {}, "layout.max_panels: must be in [1, 100000000] (got 0)");
   ExpectError("guidance:\n  threshold: -0.1\n", {}, "guidance.threshold: must be in [0, 1] (got -0.1)");
   Config c;

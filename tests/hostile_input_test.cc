@@ -124,6 +124,8 @@ TEST(HostileGuidance, EveryMalformedLineIsNamed) {
       {"2.5,1,0,0\n", "g.csv:1: face id '2.5' is not a face of the surface"},
       {"0,nan,0,0\n", "g.csv:1: face 0: dx is 'nan', not a finite number"},
       {"0,1,inf,0\n", "g.csv:1: face 0: dy is 'inf', not a finite number"},
+      // once an int cast of inf in the figure's colour bar (UBSan)
+      {"0,1e308,1e308,0\n", "g.csv:1: face 0: dx is '1e308', more than 1e12 in size (scale the field down)"},
       {"0,1,0\n", "g.csv:1: expected id,dx,dy,dz[,weight]"},
       {"0,1,0,0,1\n1,1,0,0,x\n", "g.csv:2: expected id,dx,dy,dz[,weight]"},  // line 1 may be a header
       {"0,1,0,0,1\n1,1,0,0\n", "g.csv:2: 4 values, but the first line has 5"},
@@ -147,7 +149,7 @@ TEST(HostileGuidance, FacesWithoutADirectionGetAUnitOneAndNoWeight) {
   const auto dir = testing::TempDir();
   const SurfaceModel surface(testing::ToMesh(FlatGridSoup(2)));
   std::string text = "0,0,0,0\n1,0,0,3\n";  // zero, and normal to the (flat) faces
-  for (int f = 2; f < 8; ++f) text += std::to_string(f) + ",1e308,1e308,0\n";  // huge but finite
+  for (int f = 2; f < 8; ++f) text += std::to_string(f) + ",1e12,1e12,0\n";  // as large as allowed
   GuidanceField field;
   const Status s = ReadGuidance(surface, testing::WriteFile(dir, "g.csv", text), &field);
   ASSERT_TRUE(s.ok()) << s.message();
