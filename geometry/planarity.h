@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 namespace pqlayout {
@@ -39,6 +40,37 @@ inline double PlanarityDelta(const std::vector<Eigen::Vector3d>& polygon) {
         for (int l = k + 1; l < n; ++l)
           delta = std::max(delta, QuadPlanarityDelta(polygon[i], polygon[j], polygon[k], polygon[l]));
   return delta;
+}
+
+struct FacePlane {
+  Eigen::Vector3d n;
+  double d;
+  double mean_diagonal;
+};
+
+// Least-squares plane of a polygon {x : n.x = d} (normal from the covariance, oriented like
+// the polygon's vector area) and its mean diagonal length (mean edge length for a triangle):
+// the start of the auxiliary planes of planarize and stiffen.
+inline FacePlane FitPolygonPlane(const std::vector<Eigen::Vector3d>& polygon) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), area = Eigen::Vector3d::Zero();
+  for (const auto& p : polygon) centroid += p;
+  centroid /= static_cast<double>(polygon.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    covariance += (polygon[i] - centroid) * (polygon[i] - centroid).transpose();
+    area += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance);
+  Eigen::Vector3d n = eig.eigenvectors().col(0);
+  if (n.dot(area) < 0) n = -n;
+  double diagonal = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < polygon.size(); ++i)
+    for (size_t j = i + 2; j < polygon.size(); ++j)
+      if (!(i == 0 && j == polygon.size() - 1)) diagonal += (polygon[i] - polygon[j]).norm(), ++count;
+  if (count == 0)  // a triangle: use its mean edge length
+    for (size_t i = 0; i < polygon.size(); ++i) diagonal += (polygon[i] - polygon[(i + 1) % polygon.size()]).norm(), ++count;
+  return {n, n.dot(centroid), diagonal / count};
 }
 
 }  // namespace pqlayout

@@ -246,6 +246,17 @@ KeyTable::KeyTable(Config* c) {
   Number("planarize.target_delta", &c->planarize.target_delta, Positive(1.0), "stop when max planarity δ ≤ target_delta");
   Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (planarity weight raised after each)");
 
+  auto& st = c->stiffen;
+  Number("stiffen.tolerance", &st.tolerance, NonNegative(kMaxLength),
+         "how far a vertex may be from the reference surface after stiffening, m, both sides (0: stage off)");
+  Number("stiffen.slide", &st.slide, NonNegative(kMaxLength), "how far a vertex may also slide along the reference, m, per tangent direction");
+  Number("stiffen.min_member", &st.min_member, Range{0.0, 1.0, true, true}, "no member shorter than this × its planarised length (nor than 1.1 × the section depth)");
+  Number("stiffen.smoothing", &st.smoothing, NonNegative(100.0), "smoothing length of each step, × h (0: plain gradient steps)");
+  Integer("stiffen.max_iterations", &st.max_iterations, 0, 100000, "projected-gradient iterations, one frame solve and one Ceres solve each");
+  Number("stiffen.weights.fairness", &st.weights.fairness, NonNegative(kMaxWeight), "mesh polylines keep their planarised second differences (panel kinks)");
+  Number("stiffen.weights.planarity", &st.weights.planarity, Positive(kMaxWeight), "× the start weight of the planarity penalty");
+  Number("stiffen.weights.edge_length", &st.weights.edge_length, NonNegative(kMaxWeight), "members stay longer than their minimum");
+
   auto& a = c->analysis;
   Number("analysis.panel_load", &a.panel_load, NonNegative(kMaxPressure), "panel dead load, N/m² of face area");
   Number("analysis.gravity", &a.gravity, NonNegative(1e3), "g, m/s²");

@@ -120,6 +120,26 @@ struct PlanarizeOptions {
   int max_rounds = 20;         // outer rounds (closest-point refresh, planarity weight raise)
 };
 
+struct StiffenWeights {
+  double fairness = 1.0;     // polylines keep the second differences of the planarised mesh (kinks)
+  double planarity = 1.0;    // × the start weight of the planarity penalty (raised until δ ≤ target)
+  double edge_length = 1.0;  // members stay longer than max(1.1 × section depth, min_member × planarised length)
+};
+
+// Stage stiffen (problems/stiffen.h): the planarised shell reshaped within `tolerance` of the
+// reference so that the frame's compliance drops, faces kept planar.
+struct StiffenOptions {
+  // How far (m) a vertex may be from the reference surface, both sides; 0: stage off.
+  // Off by default while the optimiser gains only a few per cent (README, "Stiffen"): it
+  // doubles a run's time. examples/great_court.yaml asks for 0.1 m, the setting.
+  double tolerance = 0.0;
+  double slide = 0.01;        // how far (m) a vertex may also move along the reference (each tangent direction)
+  double min_member = 0.75;   // no member shorter than this × its planarised length
+  double smoothing = 0.0;     // length of the step's smoothing metric (× h); 0: none (measured best, README)
+  int max_iterations = 40;    // projected-gradient iterations (one frame solve and one Ceres solve each)
+  StiffenWeights weights;
+};
+
 struct MaterialOptions {
   double youngs_modulus = 210e9;  // E, Pa (steel)
   double poisson_ratio = 0.3;     // ν; G = E / (2(1+ν))
@@ -158,6 +178,7 @@ struct Config {
   LevelsetOptions levelset;
   ExtractOptions extract;
   PlanarizeOptions planarize;
+  StiffenOptions stiffen;
   AnalysisOptions analysis;
 };
 

@@ -475,6 +475,25 @@ void DrawPlanarityKey(const PlanarityScale& scale, const std::vector<double>& de
 
 }  // namespace
 
+namespace {
+
+// Top view of the grid shell, each face filled with the mean of a per-vertex value.
+Status WriteFaceMeanFigure(const SurfaceModel& surface, const PolyMesh& mesh, const std::vector<double>& value,
+                           const ColourScale& scale, const std::string& label, const std::string& title,
+                           const std::string& path, const FigureOptions& options) {
+  SvgCanvas canvas(TopViewBounds(surface, mesh), options.width_px, title);
+  for (const auto f : mesh.faces()) {
+    double sum = 0.0;
+    for (const auto v : mesh.fv_range(f)) sum += value[v.idx()];
+    canvas.Polygon(TopView(FacePoints(mesh, f)), scale.map(std::clamp(scale.T(sum / mesh.valence(f)), 0.0, 1.0)));
+  }
+  DrawMembers(mesh, &canvas);
+  DrawFrame(surface, scale, label, &canvas);
+  return canvas.Write(path);
+}
+
+}  // namespace
+
 Status WriteComplianceFigure(const SurfaceModel& surface, const PolyMesh& mesh,
                              const std::vector<double>& nodal_compliance, double scale_max,
                              const std::string& title, const std::string& path, const FigureOptions& options) {
@@ -482,18 +501,20 @@ Status WriteComplianceFigure(const SurfaceModel& surface, const PolyMesh& mesh,
       CheckFinite(nodal_compliance, static_cast<int>(mesh.n_vertices()), "nodal compliance", "node").WithContext(path));
   const double hi = scale_max > 0.0 ? scale_max
                                     : *std::max_element(nodal_compliance.begin(), nodal_compliance.end());
-  const ColourScale scale{Viridis, 0.0, hi > 0.0 ? hi : 1.0};
-  SvgCanvas canvas(TopViewBounds(surface, mesh), options.width_px, title);
   // Each face filled with the mean compliance of its nodes (paper Fig. 9, 14).
-  for (const auto f : mesh.faces()) {
-    double sum = 0.0;
-    for (const auto v : mesh.fv_range(f)) sum += nodal_compliance[v.idx()];
-    canvas.Polygon(TopView(FacePoints(mesh, f)),
-                   scale.map(std::clamp(scale.T(sum / mesh.valence(f)), 0.0, 1.0)));
-  }
-  DrawMembers(mesh, &canvas);
-  DrawFrame(surface, scale, "nodal compliance [J]", &canvas);
-  return canvas.Write(path);
+  return WriteFaceMeanFigure(surface, mesh, nodal_compliance, ColourScale{Viridis, 0.0, hi > 0.0 ? hi : 1.0},
+                             "nodal compliance [J]", title, path, options);
+}
+
+Status WriteOffsetFigure(const SurfaceModel& surface, const PolyMesh& mesh, const std::vector<double>& offset,
+                         double tolerance, const std::string& title, const std::string& path,
+                         const FigureOptions& options) {
+  PQ_RETURN_IF_ERROR(CheckFinite(offset, static_cast<int>(mesh.n_vertices()), "normal offset", "vertex").WithContext(path));
+  std::vector<double> millimetres(offset.size());
+  for (size_t v = 0; v < offset.size(); ++v) millimetres[v] = 1000.0 * offset[v];
+  const double extent = 1000.0 * (tolerance > 0.0 ? tolerance : 1.0);
+  return WriteFaceMeanFigure(surface, mesh, millimetres, ColourScale{BlueWhiteRed, -extent, extent},
+                             "normal offset [mm]", title, path, options);
 }
 
 Status WritePlanarityFigure(const SurfaceModel& surface, const PolyMesh& mesh, double target_delta,

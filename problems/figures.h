@@ -91,6 +91,14 @@ Status WriteComplianceFigure(const SurfaceModel& surface, const PolyMesh& mesh,
                              const std::vector<double>& nodal_compliance, double scale_max,
                              const std::string& title, const std::string& path, const FigureOptions& options = {});
 
+// The stiffen stage's change of shape: top view of the grid shell, each face filled with the
+// mean normal offset of its vertices from the planarised mesh (positive: along the
+// reference's normal, up), diverging blue–white–red from −tolerance to +tolerance (mm),
+// members as in the compliance figure. InvalidInput if offset has not one finite value per vertex.
+Status WriteOffsetFigure(const SurfaceModel& surface, const PolyMesh& mesh, const std::vector<double>& offset,
+                         double tolerance, const std::string& title, const std::string& path,
+                         const FigureOptions& options = {});
+
 // Line width (px of a 1000 px drawing) of mesh edges (grid-shell members) whose mean length
 // on the drawing is `mean_edge_px` (px of a 1000 px drawing): 5 % of it, between 0.3 and
 // 1.2 px, and 0 (edges not drawn, faces only) below 4 px, where lines would cover the faces;

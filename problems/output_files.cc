@@ -24,7 +24,7 @@ const char kMarker[] = "report.json";
 const std::vector<std::string>& OwnedEntries() {
   static const std::vector<std::string> kEntries{
       "report.html", "surface.obj", "fields", "fields.vtk", "quads_initial.obj", "quads_initial.ply",
-      "quads.obj", "quads.ply", "analysis", "figures", "compare", "compare.json"};
+      "quads.obj", "quads.ply", "quads_planarized.obj", "quads_planarized.ply", "analysis", "figures", "compare", "compare.json"};
   return kEntries;
 }
 

@@ -67,6 +67,7 @@ const StageEntry kStages[] = {
     {Stage::kLevelset, "levelset", &RunLevelsetStage},
     {Stage::kExtract, "extract", &RunExtractStage},
     {Stage::kPlanarize, "planarize", &RunPlanarizeStage},
+    {Stage::kStiffen, "stiffen", &RunStiffenStage},
     {Stage::kAnalyze, "analyze", &RunAnalyzeStage},
 };
 

@@ -21,7 +21,7 @@
 
 namespace pqlayout {
 
-enum class Stage { kSurface, kMembrane, kGuidance, kLevelset, kExtract, kPlanarize, kAnalyze };
+enum class Stage { kSurface, kMembrane, kGuidance, kLevelset, kExtract, kPlanarize, kStiffen, kAnalyze };
 
 const std::vector<std::string>& StageNames();  // "surface", ..., "analyze" (SPEC names)
 const char* StageName(Stage stage);
@@ -37,6 +37,7 @@ struct PipelineState {
   LevelSetSolution levelsets;             // stage levelset
   ExtractedMesh quads;                    // stage extract: quad-dominant mesh + reference origins
   ExtractedMesh planarized;               // stage planarize: the same mesh with planar faces
+  ExtractedMesh shell;                    // stage stiffen: the final grid shell (= planarized when off)
 };
 
 // One stage: reads and extends state, writes files through out, fills metrics (JSON object;

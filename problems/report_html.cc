@@ -77,6 +77,9 @@ const FigureEntry kFigures[] = {
      "Planarity δ per face of the extracted mesh, before planarisation (paper Fig. 8a). Same "
      "logarithmic scale as after: white at the target, blue meets it, red does not."},
     {"planarity.svg", "planarize", "Planarity δ per face after planarisation (paper Fig. 8b)."},
+    {"offset.svg", "stiffen",
+     "How stiffen reshaped the planar grid: normal offset of each face's vertices from the "
+     "planarised mesh, blue down, red up, the colour scale spanning ± stiffen.tolerance."},
     {"compliance.svg", "analyze", "Nodal compliance of the grid shell as a steel frame (paper Fig. 9, 14)."},
 };
 
@@ -247,6 +250,8 @@ const KeyResult kKeyResults[] = {
     {"extract", "planarity_max", "planarity δ max, before"},
     {"planarize", "planarity_max", "planarity δ max, after"},
     {"planarize", "closeness_max", "distance to the reference, max [m]"},
+    {"stiffen", "compliance_ratio", "stiffen: compliance after / before"},
+    {"stiffen", "offset_max", "stiffen: normal offset max [m]"},
     {"analyze", "compliance_total", "compliance total [J]"},
     {"analyze", "max_displacement", "frame max displacement [m]"},
     {"analyze", "steel_mass", "steel mass [kg]"},

@@ -89,35 +89,6 @@ class GoalReached final : public ceres::IterationCallback {
   const double max_delta_, max_distance_;
 };
 
-struct FacePlane {
-  Eigen::Vector3d n;
-  double d;
-  double mean_diagonal;
-};
-
-// Least-squares plane of a polygon (normal from the covariance, oriented like the polygon).
-FacePlane FitPlane(const std::vector<Eigen::Vector3d>& polygon) {
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), area = Eigen::Vector3d::Zero();
-  for (const auto& p : polygon) centroid += p;
-  centroid /= static_cast<double>(polygon.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    covariance += (polygon[i] - centroid) * (polygon[i] - centroid).transpose();
-    area += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance);
-  Eigen::Vector3d n = eig.eigenvectors().col(0);
-  if (n.dot(area) < 0) n = -n;
-  double diagonal = 0.0;
-  int count = 0;
-  for (size_t i = 0; i < polygon.size(); ++i)
-    for (size_t j = i + 2; j < polygon.size(); ++j)
-      if (!(i == 0 && j == polygon.size() - 1)) diagonal += (polygon[i] - polygon[j]).norm(), ++count;
-  if (count == 0)  // a triangle: use its mean edge length
-    for (size_t i = 0; i < polygon.size(); ++i) diagonal += (polygon[i] - polygon[(i + 1) % polygon.size()]).norm(), ++count;
-  return {n, n.dot(centroid), diagonal / count};
-}
-
 void Measure(const PolyMesh& mesh, const std::vector<QuadMeshVertex>& origin, const ClosestPointQuery& query,
              PlanarizeReport* report) {
   const std::vector<double> delta = FacePlanarity(mesh);
@@ -173,7 +144,7 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
     std::vector<Eigen::Vector3d> polygon;
     for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx()), polygon.push_back(start[v.idx()]);
     faces.push_back(ids);
-    const FacePlane plane = FitPlane(polygon);
+    const FacePlane plane = FitPolygonPlane(polygon);
     planes.push_back({plane.n.x(), plane.n.y(), plane.n.z(), plane.d});
     mean_diagonal.push_back(plane.mean_diagonal);
   }
@@ -283,6 +254,18 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
   return Status::Ok();
 }
 
+Status WriteShellMesh(const PolyMesh& shell, double target_delta, OutputFiles* out, const std::string& name) {
+  PQ_RETURN_IF_ERROR(WriteMesh(shell, out->Path(name + ".obj")));
+  PolyMesh mesh = shell;
+  mesh.request_face_colors();
+  const std::vector<double> delta = FacePlanarity(mesh);
+  for (const auto f : mesh.faces()) {
+    const double t = std::clamp(delta[f.idx()] / (10.0 * target_delta), 0.0, 1.0);
+    mesh.set_color(f, OpenMesh::Vec3uc(static_cast<unsigned char>(255 * t), 64, static_cast<unsigned char>(255 * (1 - t))));
+  }
+  return WriteMesh(mesh, out->Path(name + ".ply"));
+}
+
 Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
   PlanarizeReport report;
   state->planarized = state->quads;
@@ -297,15 +280,9 @@ Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json*
             << report.closeness_max / h << " h, boundary " << report.boundary_deviation / h << " h, moved ≤ "
             << report.max_displacement / h << " h";
   PolyMesh& mesh = state->planarized.mesh;
-  PQ_RETURN_IF_ERROR(WriteMesh(mesh, out->Path("quads.obj")));
-  mesh.request_face_colors();
-  const std::vector<double> delta = FacePlanarity(mesh);
-  for (const auto f : mesh.faces()) {
-    const double t = std::clamp(delta[f.idx()] / (10.0 * state->config.planarize.target_delta), 0.0, 1.0);
-    mesh.set_color(f, OpenMesh::Vec3uc(static_cast<unsigned char>(255 * t), 64, static_cast<unsigned char>(255 * (1 - t))));
-  }
-  PQ_RETURN_IF_ERROR(WriteMesh(mesh, out->Path("quads.ply")));
   const double target = state->config.planarize.target_delta;
+  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads_planarized"));
+  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads"));  // the final mesh until stiffen replaces it
   PQ_RETURN_IF_ERROR(WritePlanarityFigure(*state->surface, mesh, target, "Planarity δ after planarisation",
                                           out->Path("figures/planarity.svg")));
   return WriteShell3dFigure(*state->surface, mesh, target, "The grid shell, seen from the south-west",

@@ -23,10 +23,15 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
 // writes quads_initial.obj, quads_initial.ply (planarity δ as face colour).
 Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
 
-// planarize: planar faces, on the reference (Ceres); writes quads.obj, quads.ply.
+// planarize: planar faces, on the reference (Ceres); writes quads_planarized.obj/.ply and,
+// until stiffen replaces them, quads.obj/.ply.
 Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
 
-// analyze: the planarised mesh as a steel frame; writes analysis/nodes.csv, members.csv.
+// stiffen: the planarised mesh reshaped within stiffen.tolerance for a lower compliance
+// (state->shell); writes quads.obj, quads.ply, figures/offset.svg.
+Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
+
+// analyze: the final mesh (state->shell) as a steel frame; writes analysis/nodes.csv, members.csv.
 Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
 
 }  // namespace pqlayout

@@ -114,7 +114,7 @@ Status WriteCalculixDeck(const FrameModel& m, const CalculixExportOptions& o, st
   const char* kind = u1 ? "GENERAL" : o.shape.kind == CalculixSectionShape::kCircularHollow ? "PIPE" : "BOX";
   for (size_t e = 0; e < m.members.size(); ++e) {
     const FrameMember& mb = m.members[e];
-    const Eigen::Matrix3d R = MemberFrame(m.nodes[mb.a], m.nodes[mb.b], mb.up);
+    const Eigen::Matrix3d R = MemberFrame<double>(m.nodes[mb.a], m.nodes[mb.b], mb.up);
     s << "*BEAM SECTION, ELSET=M" << e + 1 << ", MATERIAL=FRAME, SECTION=" << kind << "\n"
       << SectionLine(m, o, false) << "\n" << Vec(R.row(2).transpose()) << "\n";  // 1-direction: the member's local z
     if (u1)

@@ -33,52 +33,6 @@ const char* DofName(int dof) {
   return kNames[dof];
 }
 
-Eigen::Matrix<double, 12, 12> LocalBeamStiffness(double L, const FrameSection& s, const FrameMaterial& m) {
-  const double E = m.youngs_modulus, G = m.shear_modulus;
-  const double EA = E * s.area / L, GJ = G * s.torsion / L;
-  const double Iz = s.inertia_z, Iy = s.inertia_y;
-  Eigen::Matrix<double, 12, 12> k = Eigen::Matrix<double, 12, 12>::Zero();
-  // Axial (0, 6) and torsion (3, 9).
-  k(0, 0) = k(6, 6) = EA;
-  k(0, 6) = k(6, 0) = -EA;
-  k(3, 3) = k(9, 9) = GJ;
-  k(3, 9) = k(9, 3) = -GJ;
-  // Bending in the x–y plane (v: 1, 7; θ_z: 5, 11), stiffness E I_z.
-  const double a = 12 * E * Iz / (L * L * L), b = 6 * E * Iz / (L * L), c = 4 * E * Iz / L, d = 2 * E * Iz / L;
-  k(1, 1) = k(7, 7) = a;
-  k(1, 7) = k(7, 1) = -a;
-  k(1, 5) = k(5, 1) = k(1, 11) = k(11, 1) = b;
-  k(7, 5) = k(5, 7) = k(7, 11) = k(11, 7) = -b;
-  k(5, 5) = k(11, 11) = c;
-  k(5, 11) = k(11, 5) = d;
-  // Bending in the x–z plane (w: 2, 8; θ_y: 4, 10), stiffness E I_y (signs flip: θ_y = −dw/dx).
-  const double e = 12 * E * Iy / (L * L * L), f = 6 * E * Iy / (L * L), g = 4 * E * Iy / L, h = 2 * E * Iy / L;
-  k(2, 2) = k(8, 8) = e;
-  k(2, 8) = k(8, 2) = -e;
-  k(2, 4) = k(4, 2) = k(2, 10) = k(10, 2) = -f;
-  k(8, 4) = k(4, 8) = k(8, 10) = k(10, 8) = f;
-  k(4, 4) = k(10, 10) = g;
-  k(4, 10) = k(10, 4) = h;
-  return k;
-}
-
-Eigen::Matrix3d MemberFrame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& up) {
-  const Eigen::Vector3d x = (b - a).normalized();
-  Eigen::Vector3d z = up - x * x.dot(up);
-  if (z.norm() < 1e-9 * up.norm() || !(z.norm() > 0.0)) {
-    // The reference is parallel to the member: any perpendicular will do.
-    const Eigen::Vector3d trial = std::abs(x.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
-    z = trial - x * x.dot(trial);
-  }
-  z.normalize();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix3d R;
-  R.row(0) = x;
-  R.row(1) = y;
-  R.row(2) = z;
-  return R;
-}
-
 namespace {
 
 Eigen::Matrix<double, 12, 12> Transformation(const Eigen::Matrix3d& R) {
@@ -122,8 +76,8 @@ Status SolveFrame(const FrameModel& m, FrameResult* r) {
   for (size_t e = 0; e < m.members.size(); ++e) {
     const auto& mb = m.members[e];
     const double L = (m.nodes[mb.b] - m.nodes[mb.a]).norm();
-    member_t[e] = Transformation(MemberFrame(m.nodes[mb.a], m.nodes[mb.b], mb.up));
-    member_k[e] = LocalBeamStiffness(L, m.section, m.material);
+    member_t[e] = Transformation(MemberFrame<double>(m.nodes[mb.a], m.nodes[mb.b], mb.up));
+    member_k[e] = LocalBeamStiffness<double>(L, m.section, m.material);
     const Eigen::Matrix<double, 12, 12> K = member_t[e].transpose() * member_k[e] * member_t[e];
     int dofs[12];
     for (int k = 0; k < 6; ++k) dofs[k] = 6 * mb.a + k, dofs[6 + k] = 6 * mb.b + k;

@@ -14,27 +14,9 @@
 #include <Eigen/Geometry>
 
 #include "geometry/status.h"
+#include "solver/beam_element.h"
 
 namespace pqlayout {
-
-// Cross-section constants (metres).
-struct FrameSection {
-  double area = 0.0;      // A
-  double inertia_y = 0.0; // I about local y: bending with deflection along local z
-  double inertia_z = 0.0; // I about local z: bending with deflection along local y
-  double torsion = 0.0;   // J
-  // Circular hollow section, outside diameter D, wall t: A = π/4 (D² − d²),
-  // I = π/64 (D⁴ − d⁴) about both axes, J = 2I, d = D − 2t.
-  static FrameSection CircularHollow(double diameter, double thickness);
-  // Rectangular hollow section, width b (local y), height h (local z), wall t; thin-walled
-  // torsion constant J = 2 t (b − t)² (h − t)² / (b + h − 2t) (Bredt).
-  static FrameSection RectangularHollow(double width, double height, double thickness);
-};
-
-struct FrameMaterial {
-  double youngs_modulus = 210e9;  // E, Pa
-  double shear_modulus = 210e9 / 2.6;  // G = E / (2(1+ν)), Pa
-};
 
 struct FrameMember {
   int a = -1, b = -1;  // end nodes
@@ -69,11 +51,6 @@ struct FrameResult {
 
 // Names a DOF for messages: "u_x", ..., "θ_z".
 const char* DofName(int dof);
-
-// The 12×12 local stiffness matrix of one member (local axes, DOFs [a(6), b(6)]).
-Eigen::Matrix<double, 12, 12> LocalBeamStiffness(double length, const FrameSection& s, const FrameMaterial& m);
-// Rows: local x, y, z axes in world coordinates.
-Eigen::Matrix3d MemberFrame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& up);
 
 Status SolveFrame(const FrameModel& model, FrameResult* result);
 

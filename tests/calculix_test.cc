@@ -162,7 +162,7 @@ TEST(CalculixDeck, HasTheModelsNodesSupportsLoadsAndOrientation) {
   ASSERT_EQ(twins.size(), 2u);
   for (int e = 0; e < 2; ++e) {
     const FrameMember& mb = m.members[e];
-    const Eigen::Matrix3d R = MemberFrame(m.nodes[mb.a], m.nodes[mb.b], mb.up);
+    const Eigen::Matrix3d R = MemberFrame<double>(m.nodes[mb.a], m.nodes[mb.b], mb.up);
     EXPECT_NEAR((dirs.at(e) - R.row(2).transpose()).norm(), 0.0, 1e-11);
     EXPECT_NEAR((twins.at(e) - R.row(1).transpose()).norm(), 0.0, 1e-11);
     EXPECT_NEAR(dirs.at(e).dot(m.nodes[mb.b] - m.nodes[mb.a]), 0.0, 1e-11);
@@ -432,6 +432,7 @@ void RunStageOnCylinder(const std::string& section_shape, StageRun* run, bool ti
       state.planarized.origin[Cylinder::Id(i, j)].on_boundary = i == 0 || j == 0 || i == Cylinder::ni - 1 || j == Cylinder::nj - 1;
   state.config.analysis.export_calculix = true;
   state.config.analysis.section.shape = section_shape;
+  state.shell = state.planarized;  // stiffen off
   run->dir = TempDir() + "/run";
   std::unique_ptr<OutputFiles> out;
   ASSERT_TRUE(OutputFiles::Open(run->dir, &out).ok());

@@ -80,7 +80,7 @@ TEST(Cli, RunWritesReportAndSurface) {
   EXPECT_EQ(html.find("<img"), std::string::npos);
   size_t figures = 0;
   for (size_t at = html.find("<figure data-figure="); at != std::string::npos; at = html.find("<figure data-figure=", at + 1)) ++figures;
-  EXPECT_EQ(figures, 7u);  // displacement, guidance, level sets, 3D view, planarity before/after, compliance
+  EXPECT_EQ(figures, 8u);  // displacement, guidance, level sets, 3D view, planarity before/after, offset, compliance
   EXPECT_EQ(html.find("data-missing"), std::string::npos);
   EXPECT_NE(html.find("alignment_rms_deg"), std::string::npos);
   EXPECT_NE(html.find("max_displacement"), std::string::npos);

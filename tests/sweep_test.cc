@@ -213,7 +213,7 @@ TEST(SweepCli, TwoByTwoGivesFourRowsAndTheParetoFigure) {
   EXPECT_LT(std::stod(csv.rows[2].at("stages.levelset.alignment_rms_deg")),
             std::stod(csv.rows[0].at("stages.levelset.alignment_rms_deg")));
   // timings.csv: every stage of every run plus its total.
-  EXPECT_EQ(Lines(ReadAll(dir + "/sw/timings.csv")).size(), 1u + 4u * 8u);
+  EXPECT_EQ(Lines(ReadAll(dir + "/sw/timings.csv")).size(), 1u + 4u * 9u);
   // The figure: two panels, 4 points each (+ 2 legend markers).
   const std::string svg = ReadAll(dir + "/sw/figures/pareto.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
