@@ -24,7 +24,12 @@ struct Row {
   const char* label;
 };
 const Row kRows[] = {
-    {"analyze", "compliance_total", "compliance total [J]"},
+    {"stiffen", "compliance_before", "compliance, planarised [J]"},
+    {"analyze", "compliance_total", "compliance total, as analysed [J]"},
+    {"stiffen", "compliance_ratio", "stiffen: compliance after / before"},
+    {"stiffen", "offset_max", "stiffen: normal offset max [m]"},
+    {"stiffen", "planarity_max", "stiffen: planarity δ max after"},
+    {"stiffen", "closeness_max", "stiffen: distance to the reference max [m]"},
     {"analyze", "compliance_node_mean", "nodal compliance, mean [J]"},
     {"analyze", "compliance_node_max", "nodal compliance, max [J]"},
     {"analyze", "compliance_per_tonne", "compliance per tonne of steel [J/t]"},
