@@ -163,12 +163,9 @@ void StiffnessTerms(const PolyMesh& mesh, const GridFrame& frame, const FrameRes
       xb[k] = Jet9(model.nodes[member.b][k], 3 + k);
       up[k] = Jet9(w[k], 6 + k);
     }
-    const Matrix12<Jet9> K = WorldBeamStiffness<Jet9>(xa, xb, up, model.section, model.material);
     Eigen::Matrix<double, 12, 1> u;
     u << r.displacement[member.a], r.displacement[member.b];
-    Jet9 energy(0.0);
-    for (int p = 0; p < 12; ++p)
-      for (int q = 0; q < 12; ++q) energy += u[p] * K(p, q) * u[q];
+    const Jet9 energy = BeamEnergyTwice<Jet9>(xa, xb, up, u, model.section, model.material);
     (*node_gradient)[member.a] -= energy.v.segment<3>(0);
     (*node_gradient)[member.b] -= energy.v.segment<3>(3);
     (*normal_gradient)[i] -= energy.v.segment<3>(6);

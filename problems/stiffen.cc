@@ -8,7 +8,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <tuple>
+#include <limits>
+#include <memory>
 
 #include "geometry/closest_point.h"
 #include "geometry/interrupt.h"
@@ -16,10 +17,10 @@
 #include "problems/grid_frame.h"
 #include "problems/residuals/edge_length_residual.h"
 #include "problems/residuals/fairness_change_residual.h"
-#include "problems/residuals/planarity_budget_residual.h"
-#include "problems/residuals/proximal_step_residual.h"
+#include "problems/residuals/joint_length_residual.h"
+#include "problems/residuals/planarity_lagrangian_residual.h"
+#include "problems/stiffen_problem.h"
 #include "solver/ceres_options.h"
-#include "solver/framed_point_cost.h"
 
 namespace pqlayout {
 
@@ -74,232 +75,180 @@ std::vector<double> KinkAngles(const PolyMesh& mesh) {
   return angles;
 }
 
-namespace {
 
-// The schedule (problems/stiffen.h).
-constexpr double kPlanarityStart = 1e6;   // × stiffen.weights.planarity; r ≈ √w δ
-constexpr double kPlanarityRaise = 10.0;  // until a step meets δ ≤ kPlanarityMargin × target
-constexpr int kMaxPlanarityRaises = 6;
-constexpr double kPlanarityMargin = 0.9;
-// The per-vertex budget (PlanarityBudgetResidual's ε) starts at this × δ target / 2 (a quad
-// ±e off its plane has δ = 2e/ℓ) and shrinks ×0.7 with every raise after the second, for the
-// n-gons and skew quads where the plane distance understates δ.
-constexpr double kBudgetStart = 0.8, kBudgetShrink = 0.7;
-constexpr int kCeresIterations = 50;      // per step (the step problem is nearly linear)
-constexpr double kFirstStep = 0.3;        // the first step's unconstrained length, × tolerance
-constexpr double kGrow = 1.5, kShrink = 0.3;
-constexpr double kStopDecrease = 1e-5;    // relative decrease of F below which a step counts as small
-constexpr int kSmallSteps = 5;            // ... and this many small steps in a row end the stage
-constexpr double kMinStep = 1e-4;         // so does μ below this × its first value (steps keep failing)
-constexpr double kMinMemberOfDepth = 1.1; // members ≥ 1.1 × section depth
+namespace {
 
 using Vec3 = Eigen::Vector3d;
 
-struct Problem {
-  // Variables: per vertex, local coordinates q in its frame (p = f + R q) with box bounds.
-  std::vector<PointFrame> frames;
-  std::vector<Vec3> lower, upper;
-  std::vector<bool> held;
-  // Fixed data of the planarised mesh.
-  std::vector<std::vector<int>> faces;
-  std::vector<double> mean_diagonal;
-  std::vector<std::array<int, 3>> triples;   // mesh polylines a–v–b at valence-4 interior vertices
-  std::vector<Vec3> second_difference0;      // their planarised second differences
-  std::vector<std::tuple<int, int, double>> members;  // (i, j, minimum length)
-  double h = 1.0, beta = 0.0;
-  StiffenWeights weights;
-};
-
-std::vector<Vec3> World(const Problem& P, const std::vector<Vec3>& q) {
-  std::vector<Vec3> x(q.size());
-  for (size_t v = 0; v < q.size(); ++v) x[v] = P.frames[v].ToWorld(q[v]);
-  return x;
-}
-
-void SetPoints(const std::vector<Vec3>& x, PolyMesh* mesh) {
-  for (size_t v = 0; v < x.size(); ++v) mesh->set_point(VertexHandle(static_cast<int>(v)), {x[v].x(), x[v].y(), x[v].z()});
-}
-
-Vec3 SecondDifference(const std::vector<Vec3>& x, const std::array<int, 3>& t) { return x[t[0]] - 2.0 * x[t[1]] + x[t[2]]; }
-
-double MaxPlanarity(const Problem& P, const std::vector<Vec3>& x) {
-  double delta = 0.0;
-  std::vector<Vec3> polygon;
-  for (const auto& face : P.faces) {
-    polygon.clear();
-    for (const int v : face) polygon.push_back(x[v]);
-    delta = std::max(delta, PlanarityDelta(polygon));
-  }
-  return delta;
-}
-
-// The least-squares parts of F (½ Σ r² of the fairness-change and member-hinge residuals).
-double Penalties(const Problem& P, const std::vector<Vec3>& x) {
-  double sum = 0.0;
-  for (size_t t = 0; t < P.triples.size(); ++t)
-    sum += 0.5 * P.weights.fairness * (SecondDifference(x, P.triples[t]) - P.second_difference0[t]).squaredNorm() / (P.h * P.h);
-  for (const auto& [i, j, min_length] : P.members) {
-    const double short_by = std::max(0.0, min_length - (x[i] - x[j]).norm()) / P.h;
-    sum += 0.5 * P.weights.edge_length * short_by * short_by;
-  }
-  return sum;
-}
-
-// Each vertex's frame (tangents and normal of the reference at the foot point of its
-// planarised position) and box (header). Vertices that cannot move are held.
-void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, const GridFrame& frame,
-                    const StiffenOptions& o, Problem* P, std::vector<Vec3>* q) {
-  const int n = static_cast<int>(mesh.mesh.n_vertices());
-  P->frames.resize(n), P->lower.resize(n), P->upper.resize(n), P->held.assign(n, false), q->resize(n);
-  const double t = o.tolerance * (1.0 - 1e-9);
-  for (int v = 0; v < n; ++v) {
-    const Vec3 p = ToEigen(mesh.mesh.point(VertexHandle(v)));
-    const SurfacePoint foot = query.OnSurface(p);
-    const Vec3 normal = foot.normal.normalized();
-    const Vec3 e1 = normal.unitOrthogonal(), e2 = normal.cross(e1);
-    PointFrame& f = P->frames[v];
-    f.origin = foot.point;
-    f.rotation.col(0) = e1, f.rotation.col(1) = e2, f.rotation.col(2) = normal;
-    Vec3& local = (*q)[v] = f.ToLocal(p);
-    const double a = std::abs(local[0]) + o.slide, b = std::abs(local[1]) + o.slide;
-    const double normal_room = t * t - a * a - b * b;
-    P->held[v] = mesh.origin[v].on_boundary || mesh.origin[v].corner || frame.node_size[frame.node_of[v]] > 1 ||
-                 normal_room <= 0.0;
-    if (P->held[v]) {
-      f.origin = p, f.rotation.setIdentity(), local.setZero();  // exactly where it is
-      continue;
-    }
-    const double s = std::sqrt(normal_room);
-    P->lower[v] = Vec3(local[0] - o.slide, local[1] - o.slide, -s);
-    P->upper[v] = Vec3(local[0] + o.slide, local[1] + o.slide, s);
-    local[2] = std::clamp(local[2], -s, s);  // a planarised vertex farther than t comes in
-  }
-}
-
-void SetUpData(const ExtractedMesh& mesh, const GridFrame& frame, const SectionOptions& section,
-               const StiffenOptions& o, const std::vector<Vec3>& x0, Problem* P) {
-  const PolyMesh& m = mesh.mesh;
-  for (const auto f : m.faces()) {
-    std::vector<int> ids;
-    std::vector<Vec3> polygon;
-    for (const auto v : m.fv_range(f)) ids.push_back(v.idx()), polygon.push_back(x0[v.idx()]);
-    P->faces.push_back(ids);
-    P->mean_diagonal.push_back(FitPolygonPlane(polygon).mean_diagonal);
-  }
-  for (const auto v : m.vertices()) {
-    if (m.is_boundary(v) || m.valence(v) != 4) continue;
-    std::vector<int> ring;
-    for (const auto w : m.vv_range(v)) ring.push_back(w.idx());
-    P->triples.push_back({ring[0], v.idx(), ring[2]});
-    P->triples.push_back({ring[1], v.idx(), ring[3]});
-  }
-  for (const auto& t : P->triples) P->second_difference0.push_back(SecondDifference(x0, t));
-  for (const auto& [i, j] : frame.member_vertices) {
-    const double length = (x0[i] - x0[j]).norm();
-    P->members.emplace_back(i, j, std::min(length, std::max(kMinMemberOfDepth * SectionDepth(section), o.min_member * length)));
-  }
-}
-
-ceres::CostFunction* Framed(const Problem& P, ceres::CostFunction* inner, std::initializer_list<int> vertices,
-                            bool leading_plane = false) {
-  std::vector<const PointFrame*> frames;
-  if (leading_plane) frames.push_back(nullptr);
-  for (const int v : vertices) frames.push_back(&P.frames[v]);
-  return new FramedPointCost(inner, frames);
-}
-
-// One step from q (in place): the Ceres problem of the header with step length mu.
-Status SolveStep(const Problem& P, const std::vector<Vec3>& gradient, double mu, double planarity_weight,
-                 double planarity_budget, std::vector<Vec3>* q, ceres::Solver::Summary* summary) {
-  const std::vector<Vec3> xk = World(P, *q);
-  ceres::Problem problem;
-  const int n = static_cast<int>(q->size());
-  for (int v = 0; v < n; ++v) {
-    double* block = (*q)[v].data();
-    problem.AddParameterBlock(block, 3);
-    if (P.held[v]) {
-      problem.SetParameterBlockConstant(block);
-      continue;
-    }
-    for (int k = 0; k < 3; ++k) {
-      problem.SetParameterLowerBound(block, k, P.lower[v][k]);
-      problem.SetParameterUpperBound(block, k, P.upper[v][k]);
-    }
-    problem.AddResidualBlock(Framed(P, ProximalStepResidual::Create(xk[v] - mu * gradient[v], mu), {v}), nullptr, block);
-  }
-  std::vector<std::array<double, 4>> planes(P.faces.size());
-  for (size_t f = 0; f < P.faces.size(); ++f) {
-    if (P.faces[f].size() < 4) continue;
-    std::vector<Vec3> polygon;
-    for (const int v : P.faces[f]) polygon.push_back(xk[v]);
-    const FacePlane plane = FitPolygonPlane(polygon);
-    planes[f] = {plane.n.x(), plane.n.y(), plane.n.z(), plane.d};
-    problem.AddParameterBlock(planes[f].data(), 4,
-                              new ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>());
-    for (const int v : P.faces[f])
-      problem.AddResidualBlock(
-          Framed(P, PlanarityBudgetResidual::Create(planarity_weight, P.mean_diagonal[f], planarity_budget), {v}, true),
-          nullptr, planes[f].data(), (*q)[v].data());
-  }
-  for (size_t t = 0; t < P.triples.size(); ++t) {
-    const auto& [a, v, b] = P.triples[t];
-    if (P.held[a] && P.held[v] && P.held[b]) continue;
-    double* blocks[3] = {(*q)[a].data(), (*q)[v].data(), (*q)[b].data()};
-    if (P.beta > 0.0)
-      problem.AddResidualBlock(
-          Framed(P, FairnessChangeResidual::Create(SecondDifference(xk, P.triples[t]), P.beta * P.h * P.h / mu, P.h), {a, v, b}),
-          nullptr, blocks[0], blocks[1], blocks[2]);
-    if (P.weights.fairness > 0.0)
-      problem.AddResidualBlock(
-          Framed(P, FairnessChangeResidual::Create(P.second_difference0[t], P.weights.fairness, P.h), {a, v, b}), nullptr,
-          blocks[0], blocks[1], blocks[2]);
-  }
-  if (P.weights.edge_length > 0.0)
-    for (const auto& [i, j, min_length] : P.members) {
-      if (P.held[i] && P.held[j]) continue;
-      problem.AddResidualBlock(Framed(P, EdgeLengthResidual::Create(min_length, P.weights.edge_length, P.h), {i, j}),
-                               nullptr, (*q)[i].data(), (*q)[j].data());
-    }
-  ceres::Solve(SparseCholeskyOptions(kCeresIterations), &problem, summary);
-  if (!summary->IsSolutionUsable()) return Status::Internal("stiffen: Ceres failed: " + summary->message);
-  return CheckInterrupt();
-}
+// The schedule (problems/stiffen.h).
+constexpr double kPlanarityMargin = 0.9;  // the constraint is δ ≤ 0.9 × planarize.target_delta
+constexpr double kPenaltyStart = 1e4;     // ρ × (δ excess)² against C/C₀ ~ 1 (× stiffen.weights.planarity)
+constexpr double kPenaltyRaise = 10.0;    // when a round cut the violation by less than kViolationCut
+constexpr double kViolationCut = 0.25;
+constexpr double kPenaltyMax = 1e9;       // beyond, L-BFGS stalls on the conditioning
+constexpr double kFeasible = 1e-3;        // a violation below this × δ_allowed counts as met
+constexpr double kJointWeight = 1e4;      // joints stay joints (the frame's topology is fixed)
+constexpr int kRounds = 20;               // multiplier updates at most
+constexpr int kRoundIterations = 100;     // L-BFGS iterations per round at most
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-}  // namespace
+// L(z) = C(x)/C₀ + fairness change + member hinge + Σ PHR planarity terms, x = f + R q,
+// q = centre + radius ∘ sin z per vertex (the box, smoothly; held vertices are not in z).
+// Penalty terms are Ceres residual blocks on the world positions, evaluated with their
+// gradient by ceres::Problem::Evaluate; C and ∇C by the adjoint (problems/grid_frame.h).
+class Lagrangian final : public ceres::FirstOrderFunction {
+ public:
+  Lagrangian(const StiffenProblem& P, const std::vector<Restraints>& restraints, const AnalysisOptions& analysis,
+             double c0, int joints, double allowed, PolyMesh* mesh, StiffenReport* report)
+      : P_(P), restraints_(restraints), analysis_(analysis), c0_(c0), joints_(joints), allowed_(allowed), mesh_(mesh),
+        report_(report) {
+    for (size_t v = 0; v < P.held.size(); ++v)
+      if (!P.held[v]) free_.push_back(static_cast<int>(v));
+    positions_.resize(P.held.size());
+    lambda_.assign(P.sub_quads.size(), 0.0);
+    ceres::Problem::Options options;
+    options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+    penalties_ = std::make_unique<ceres::Problem>(options);
+    for (auto& p : positions_) penalties_->AddParameterBlock(p.data(), 3);
+    for (size_t v = 0; v < P.held.size(); ++v)
+      if (P.held[v]) penalties_->SetParameterBlockConstant(positions_[v].data());
+    for (size_t k = 0; k < P.sub_quads.size(); ++k) {
+      const auto& s = P.sub_quads[k];
+      if (P.held[s[0]] && P.held[s[1]] && P.held[s[2]] && P.held[s[3]]) continue;
+      penalties_->AddResidualBlock(PlanarityLagrangianResidual::Create(&lambda_[k], &rho_, allowed_), nullptr,
+                                   Block(s[0]), Block(s[1]), Block(s[2]), Block(s[3]));
+    }
+    for (size_t t = 0; t < P.triples.size(); ++t) {
+      const auto& [a, v, b] = P.triples[t];
+      if (P.weights.fairness > 0.0 && !(P.held[a] && P.held[v] && P.held[b]))
+        penalties_->AddResidualBlock(FairnessChangeResidual::Create(P.second_difference0[t], P.weights.fairness, P.h),
+                                     nullptr, Block(a), Block(v), Block(b));
+    }
+    for (const auto& [i, j, min_length] : P.members)
+      if (P.weights.edge_length > 0.0 && !(P.held[i] && P.held[j]))
+        penalties_->AddResidualBlock(EdgeLengthResidual::Create(min_length, P.weights.edge_length, P.h), nullptr,
+                                     Block(i), Block(j));
+    for (const auto& [i, j] : P.joint_edges)
+      if (!(P.held[i] && P.held[j]))
+        penalties_->AddResidualBlock(JointLengthResidual::Create(P.joint_max_length, kJointWeight, P.h), nullptr,
+                                     Block(i), Block(j));
+    for (const int v : free_) evaluate_options_.parameter_blocks.push_back(Block(v));
+  }
 
-namespace {
+  int NumParameters() const override { return 3 * static_cast<int>(free_.size()); }
 
-// The state of the iteration at an accepted point.
-struct Iterate {
-  std::vector<Vec3> q;
-  GridCompliance eval;
-  double merit = 0.0;  // F = C/C₀ + penalties
+  void SetPenalty(double rho) { rho_ = rho; }
+  double allowed() const { return allowed_; }
+  const StiffenProblem& problem() const { return P_; }
+  double rho() const { return rho_; }
+
+  // q of every vertex from z (held vertices keep q_start).
+  std::vector<Vec3> Local(const double* z, const std::vector<Vec3>& q_start) const {
+    std::vector<Vec3> q = q_start;
+    for (size_t k = 0; k < free_.size(); ++k) {
+      const int v = free_[k];
+      for (int c = 0; c < 3; ++c)
+        q[v][c] = Centre(v, c) + Radius(v, c) * std::sin(z[3 * k + c]);
+    }
+    return q;
+  }
+  // z of q (inverse of Local).
+  std::vector<double> Parameters(const std::vector<Vec3>& q) const {
+    std::vector<double> z(3 * free_.size(), 0.0);
+    for (size_t k = 0; k < free_.size(); ++k)
+      for (int c = 0; c < 3; ++c) {
+        const int v = free_[k];
+        const double radius = Radius(v, c);
+        z[3 * k + c] = radius > 0.0 ? std::asin(std::clamp((q[v][c] - Centre(v, c)) / radius, -1.0, 1.0)) : 0.0;
+      }
+    return z;
+  }
+
+  // λ ← max(0, λ + ρ g) for every sub-quad at x; returns the largest violation max(0, δ − δ_allowed).
+  double UpdateMultipliers(const std::vector<Vec3>& x) {
+    double violation = 0.0;
+    for (size_t k = 0; k < P_.sub_quads.size(); ++k) {
+      const auto& s = P_.sub_quads[k];
+      const double g = QuadPlanarityDelta(x[s[0]], x[s[1]], x[s[2]], x[s[3]]) - allowed_;
+      lambda_[k] = std::max(0.0, lambda_[k] + rho_ * g);
+      violation = std::max(violation, g);
+    }
+    return violation;
+  }
+
+  bool Evaluate(const double* z, double* cost, double* gradient) const override;
+
+ private:
+  double* Block(int v) { return positions_[v].data(); }
+  double Centre(int v, int c) const { return 0.5 * (P_.lower[v][c] + P_.upper[v][c]); }
+  double Radius(int v, int c) const { return 0.5 * (P_.upper[v][c] - P_.lower[v][c]); }
+
+  const StiffenProblem& P_;
+  const std::vector<Restraints>& restraints_;
+  const AnalysisOptions& analysis_;
+  const double c0_;
+  const int joints_;
+  const double allowed_;  // δ_allowed of every sub-quad
+  PolyMesh* mesh_;
+  StiffenReport* report_;
+  std::vector<int> free_;
+  mutable std::vector<Vec3> positions_;  // the penalty problem's parameter blocks (world)
+  std::vector<double> lambda_;
+  double rho_ = kPenaltyStart;
+  std::unique_ptr<ceres::Problem> penalties_;
+  ceres::Problem::EvaluateOptions evaluate_options_;
 };
 
-Status Evaluate(const Problem& P, const std::vector<Restraints>& restraints, const AnalysisOptions& analysis,
-                double c0, PolyMesh* mesh, Iterate* it, StiffenReport* report) {
+// ceres::GradientProblem owns its function; the Lagrangian outlives the rounds, so each
+// round gets this non-owning forwarder.
+class Borrowed final : public ceres::FirstOrderFunction {
+ public:
+  explicit Borrowed(const ceres::FirstOrderFunction& f) : f_(f) {}
+  bool Evaluate(const double* z, double* cost, double* gradient) const override { return f_.Evaluate(z, cost, gradient); }
+  int NumParameters() const override { return f_.NumParameters(); }
+
+ private:
+  const ceres::FirstOrderFunction& f_;
+};
+
+bool Lagrangian::Evaluate(const double* z, double* cost, double* gradient) const {
+  std::vector<Vec3> q(P_.held.size(), Vec3::Zero());  // held vertices: q = 0 in the identity frame at p
+  q = Local(z, q);
+  const std::vector<Vec3> x = World(P_, q);
+  for (size_t v = 0; v < x.size(); ++v) positions_[v] = x[v];
+  double penalty = 0.0;
+  std::vector<double> penalty_gradient;
+  if (!penalties_->Evaluate(evaluate_options_, &penalty, nullptr, gradient ? &penalty_gradient : nullptr, nullptr))
+    return false;
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<Vec3> x = World(P, it->q);
-  SetPoints(x, mesh);
-  const Status status = EvaluateGridCompliance(*mesh, restraints, analysis, true, &it->eval);
-  report->seconds_frame += Seconds(start);
-  ++report->evaluations;
-  PQ_RETURN_IF_ERROR(status);
-  it->merit = it->eval.compliance / c0 + Penalties(P, x);
-  return Status::Ok();
+  SetPoints(x, mesh_);
+  GridCompliance c;
+  const Status status = EvaluateGridCompliance(*mesh_, restraints_, analysis_, gradient != nullptr, &c);
+  report_->seconds_frame += Seconds(start);
+  ++report_->evaluations;
+  if (!status.ok() || c.frame.joints != joints_) return false;  // a mechanism, or a member became a joint
+  *cost = c.compliance / c0_ + penalty;
+  if (gradient == nullptr) return true;
+  for (size_t k = 0; k < free_.size(); ++k) {
+    const int v = free_[k];
+    const Vec3 gx = c.gradient[v] / c0_ + Vec3(penalty_gradient[3 * k], penalty_gradient[3 * k + 1], penalty_gradient[3 * k + 2]);
+    const Vec3 gq = P_.frames[v].rotation.transpose() * gx;
+    for (int d = 0; d < 3; ++d) gradient[3 * k + d] = gq[d] * Radius(v, d) * std::cos(z[3 * k + d]);
+  }
+  return true;
 }
 
-void Measure(const Problem& P, const ClosestPointQuery& query, const std::vector<Vec3>& x0, const Iterate& first,
-             const Iterate& last, PolyMesh* mesh, StiffenReport* r) {
-  const std::vector<Vec3> x = World(P, last.q);
-  r->compliance_before = first.eval.compliance;
-  r->compliance_after = last.eval.compliance;
+void Measure(const StiffenProblem& P, const ClosestPointQuery& query, const std::vector<Vec3>& x0,
+             const GridCompliance& first, const GridCompliance& last, const std::vector<Vec3>& q, PolyMesh* mesh,
+             StiffenReport* r) {
+  const std::vector<Vec3> x = World(P, q);
+  r->compliance_before = first.compliance;
+  r->compliance_after = last.compliance;
   r->compliance_ratio = r->compliance_after / r->compliance_before;
-  r->steel_mass_change = last.eval.frame.steel_mass / first.eval.frame.steel_mass - 1.0;
+  r->steel_mass_change = last.frame.steel_mass / first.frame.steel_mass - 1.0;
   r->planarity_max = MaxPlanarity(P, x);
   r->normal_offset.assign(x.size(), 0.0);
   r->closeness_max = r->offset_max = r->offset_mean = r->displacement_max = 0.0;
@@ -319,74 +268,37 @@ void Measure(const Problem& P, const ClosestPointQuery& query, const std::vector
   for (const double k : kinks) r->kink_mean_deg_after += k / kinks.size(), r->kink_max_deg_after = std::max(r->kink_max_deg_after, k);
 }
 
-// Limited-memory BFGS (Nocedal & Wright, Algorithm 7.4) on the free vertices' positions:
-// the step direction −H g of the compliance, H from the last kMemory accepted steps. The
-// compliance is ill-conditioned (a grid shell is far stiffer in membrane action than in
-// bending), so plain gradient steps crawl; the numpy prototype used L-BFGS-B for the same reason.
-class Lbfgs {
- public:
-  explicit Lbfgs(const std::vector<bool>& held) : held_(held) {}
-
-  std::vector<Vec3> Gradient(const std::vector<Vec3>& dc, double c0) const {
-    std::vector<Vec3> g(dc.size());
-    for (size_t v = 0; v < g.size(); ++v) g[v] = held_[v] ? Vec3::Zero() : Vec3(dc[v] / c0);
-    return g;
-  }
-  bool empty() const { return s_.empty(); }
-  void Clear() { s_.clear(), y_.clear(), rho_.clear(); }
-  // Adds the pair (x₁ − x₀, g₁ − g₀) if its curvature is positive; true if it is the first.
-  bool Add(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1, const std::vector<Vec3>& g0,
-           const std::vector<Vec3>& g1) {
-    Eigen::VectorXd s(3 * x0.size()), y(3 * x0.size());
-    for (size_t v = 0; v < x0.size(); ++v)
-      s.segment<3>(3 * v) = held_[v] ? Vec3::Zero() : Vec3(x1[v] - x0[v]), y.segment<3>(3 * v) = g1[v] - g0[v];
-    const double sy = s.dot(y);
-    if (!(sy > 1e-12 * s.norm() * y.norm())) return false;
-    const bool first = s_.empty();
-    s_.push_back(s), y_.push_back(y), rho_.push_back(1.0 / sy);
-    if (s_.size() > kMemory) s_.erase(s_.begin()), y_.erase(y_.begin()), rho_.erase(rho_.begin());
-    return first;
-  }
-  // H g (the step is −μ H g); g itself while there is no pair.
-  std::vector<Vec3> Direction(const std::vector<Vec3>& g) const {
-    Eigen::VectorXd q(3 * g.size());
-    for (size_t v = 0; v < g.size(); ++v) q.segment<3>(3 * v) = g[v];
-    std::vector<double> alpha(s_.size());
-    for (int k = static_cast<int>(s_.size()) - 1; k >= 0; --k) alpha[k] = rho_[k] * s_[k].dot(q), q -= alpha[k] * y_[k];
-    if (!s_.empty()) q *= s_.back().dot(y_.back()) / y_.back().squaredNorm();
-    for (size_t k = 0; k < s_.size(); ++k) q += s_[k] * (alpha[k] - rho_[k] * y_[k].dot(q));
-    std::vector<Vec3> d(g.size());
-    for (size_t v = 0; v < g.size(); ++v) d[v] = q.segment<3>(3 * v);
-    return d;
-  }
-
- private:
-  static constexpr size_t kMemory = 8;
-  const std::vector<bool>& held_;
-  std::vector<Eigen::VectorXd> s_, y_;
-  std::vector<double> rho_;
-};
-
-// The planarity penalty's weight and budget, raised / shrunk as steps need it.
-struct StepSchedule {
-  double weight, budget;
-};
-
-// One step from q to *trial along −μ d, the planarity weight raised (and, after the
-// second raise, the budget shrunk) until δ max ≤ kPlanarityMargin × target or the raises
-// are spent; *delta is the step's δ max.
-Status PlanarStep(const Problem& P, const std::vector<Vec3>& d, double mu, double target_delta, StepSchedule* schedule,
-                  const std::vector<Vec3>& q, std::vector<Vec3>* trial, double* delta, ceres::Solver::Summary* summary,
-                  StiffenReport* report) {
-  for (int raise = 0; raise <= kMaxPlanarityRaises; ++raise) {
-    *trial = q;
+// Rounds of L-BFGS (Ceres' GradientProblemSolver) on the Lagrangian, the multipliers updated
+// and the penalty raised between them, until δ ≤ the allowed value and a round converges.
+Status MinimiseLagrangian(Lagrangian* L, const StiffenOptions& options, std::vector<Vec3>* q, StiffenReport* report) {
+  const std::vector<Vec3> q_start = *q;
+  std::vector<double> z = L->Parameters(*q);
+  double rho = kPenaltyStart * options.weights.planarity, previous = std::numeric_limits<double>::infinity();
+  int budget = options.max_iterations;
+  for (int round = 0; round < kRounds && budget > 0; ++round) {
+    L->SetPenalty(rho);
+    ceres::GradientProblem problem(new Borrowed(*L));
+    ceres::GradientProblemSolver::Options solver_options;
+    solver_options.max_num_iterations = std::min(budget, kRoundIterations);
+    solver_options.function_tolerance = 1e-7;
+    solver_options.logging_type = ceres::SILENT;
+    InterruptCallback interrupt;
+    solver_options.callbacks.push_back(&interrupt);
+    ceres::GradientProblemSolver::Summary summary;
     const auto start = std::chrono::steady_clock::now();
-    PQ_RETURN_IF_ERROR(SolveStep(P, d, mu, schedule->weight, schedule->budget, trial, summary));
+    ceres::Solve(solver_options, problem, z.data(), &summary);
     report->seconds_ceres += Seconds(start);
-    *delta = MaxPlanarity(P, World(P, *trial));
-    if (*delta <= kPlanarityMargin * target_delta) return Status::Ok();
-    schedule->weight *= kPlanarityRaise;
-    if (raise >= 2) schedule->budget *= kBudgetShrink;
+    PQ_RETURN_IF_ERROR(CheckInterrupt());
+    const int iterations = static_cast<int>(summary.iterations.size()) - 1;
+    report->iterations += iterations, budget -= std::max(iterations, 1);
+    *q = L->Local(z.data(), q_start);
+    const double violation = L->UpdateMultipliers(World(L->problem(), *q));
+    LOG(INFO) << "stiffen: round " << round + 1 << ": " << iterations << " L-BFGS iterations, L " << summary.initial_cost << " → " << summary.final_cost
+              << ", δ max above " << L->allowed() << " by " << violation << ", ρ " << rho;
+    const bool feasible = violation <= kFeasible * L->allowed();
+    if (feasible && (summary.termination_type == ceres::CONVERGENCE || iterations <= 1)) break;
+    if (!feasible && violation > kViolationCut * previous) rho = std::min(kPenaltyMax, rho * kPenaltyRaise);
+    previous = violation;
   }
   return Status::Ok();
 }
@@ -402,69 +314,25 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
   std::vector<Vec3> x0(mesh->mesh.n_vertices());
   for (const auto v : mesh->mesh.vertices()) x0[v.idx()] = ToEigen(mesh->mesh.point(v));
   const ClosestPointQuery query(reference);
-  Problem P;
-  P.h = h;
-  P.beta = std::pow(options.smoothing, 4.0);  // (ℓ/h)⁴ with ℓ = smoothing × h
-  P.weights = options.weights;
-  Iterate current;
   GridFrame frame;
   BuildGridFrame(mesh->mesh, restraints, analysis, &frame);
-  SetUpVariables(query, *mesh, frame, options, &P, &current.q);
-  SetUpData(*mesh, frame, analysis.section, options, x0, &P);
+  StiffenProblem P;
+  std::vector<Vec3> q;
+  SetUpStiffenProblem(query, *mesh, frame, analysis.section, options, h, &P, &q);
   for (const bool held : P.held) report->held_vertices += held;
-  PQ_RETURN_IF_ERROR(Evaluate(P, restraints, analysis, 1.0, &mesh->mesh, &current, report).WithContext("stiffen"));
-  const double c0 = current.eval.compliance;
-  current.merit = 1.0 + Penalties(P, World(P, current.q));
-  const Iterate first = current;
-  if (options.tolerance == 0.0 || options.max_iterations == 0) {
-    Measure(P, query, x0, first, current, &mesh->mesh, report);
-    return Status::Ok();
+  GridCompliance first;
+  SetPoints(World(P, q), &mesh->mesh);
+  PQ_RETURN_IF_ERROR(EvaluateGridCompliance(mesh->mesh, restraints, analysis, false, &first).WithContext("stiffen"));
+  if (options.tolerance > 0.0 && options.max_iterations > 0 && report->held_vertices < static_cast<int>(x0.size())) {
+    Lagrangian L(P, restraints, analysis, first.compliance, frame.joints, kPlanarityMargin * target_delta, &mesh->mesh,
+                 report);
+    PQ_RETURN_IF_ERROR(MinimiseLagrangian(&L, options, &q, report));
+    PQ_RETURN_IF_ERROR(RestorePlanarity(P, target_delta, &q));
   }
-  Lbfgs lbfgs(P.held);
-  std::vector<Vec3> g = lbfgs.Gradient(current.eval.gradient, c0);
-  double g_max = 0.0;
-  for (const auto& gv : g) g_max = std::max(g_max, gv.norm());
-  // Until the first curvature pair, steps along −g of kFirstStep × tolerance at most; then
-  // quasi-Newton steps, μ = 1 the natural length.
-  double mu = g_max > 0.0 ? kFirstStep * options.tolerance / g_max : 0.0;
-  const double first_mu = mu;
-  std::vector<Vec3> d = g;
-  const double mu_min = kMinStep * mu;
-  StepSchedule schedule{kPlanarityStart * options.weights.planarity, kBudgetStart * target_delta / 2.0};
-  const int joints = frame.joints;
-  int small_steps = 0;
-  for (report->iterations = 0; report->iterations < options.max_iterations && small_steps < kSmallSteps && mu > mu_min;
-       ++report->iterations) {
-    Iterate trial;
-    ceres::Solver::Summary summary;
-    double delta = 0.0;
-    PQ_RETURN_IF_ERROR(PlanarStep(P, d, mu, target_delta, &schedule, current.q, &trial.q, &delta, &summary, report));
-    const bool planar = delta <= kPlanarityMargin * target_delta;
-    const Status evaluated = planar ? Evaluate(P, restraints, analysis, c0, &mesh->mesh, &trial, report) : Status::Ok();
-    const bool accepted = planar && evaluated.ok() && trial.eval.frame.joints == joints && trial.merit < current.merit;
-    const double decrease = accepted ? (current.merit - trial.merit) / current.merit : 0.0;
-    if (accepted) {
-      std::vector<Vec3> g_new = lbfgs.Gradient(trial.eval.gradient, c0);
-      const bool first_pair = lbfgs.Add(World(P, current.q), World(P, trial.q), g, g_new);
-      g = g_new;
-      d = lbfgs.Direction(g);
-      current = std::move(trial);
-      mu = first_pair ? 1.0 : std::min(lbfgs.empty() ? kGrow * mu : 1.0, kGrow * mu);
-    } else if (!lbfgs.empty()) {  // the quasi-Newton model misled the step: restart from the gradient
-      lbfgs.Clear();
-      d = g;
-      mu = first_mu;
-      ++report->rejected_steps;
-    } else {
-      mu *= kShrink;
-      ++report->rejected_steps;
-    }
-    small_steps = accepted && decrease < kStopDecrease ? small_steps + 1 : accepted ? 0 : small_steps;
-    LOG(INFO) << "stiffen: iteration " << report->iterations + 1 << (accepted ? "" : " (rejected)") << ": C/C₀ "
-              << current.eval.compliance / c0 << ", F " << current.merit << ", δ max " << delta << ", next μ " << mu
-              << " (" << summary.iterations.size() - 1 << " Ceres iterations)";
-  }
-  Measure(P, query, x0, first, current, &mesh->mesh, report);
+  GridCompliance last;
+  SetPoints(World(P, q), &mesh->mesh);
+  PQ_RETURN_IF_ERROR(EvaluateGridCompliance(mesh->mesh, restraints, analysis, false, &last).WithContext("stiffen"));
+  Measure(P, query, x0, first, last, q, &mesh->mesh, report);
   return Status::Ok();
 }
 

@@ -3,45 +3,39 @@
 // architect's willingness to accept modifications"). The planarised mesh's vertices move
 // so that the compliance C = fᵀu of the frame that `analyze` builds (problems/grid_frame.h,
 // the same model, loads that follow the geometry) drops, subject to
-//   - planarity: δ ≤ 0.9 × planarize.target_delta on every face (a penalty in each step, its
-//     weight raised ×10 until the step meets it);
+//   - planarity: δ ≤ 0.9 × planarize.target_delta on every sub-quad of every face;
 //   - tolerance, hard: each vertex moves in a box of its own frame (two tangents and the
 //     normal of the reference at the planarised vertex's foot point f): ±stiffen.slide along
 //     each tangent, ±S along the normal with S² = t² − (|a₀|+slide)² − (|b₀|+slide)², so
 //     |p − f| ≤ t and the distance to the reference, ≤ |p − f|, never exceeds t = tolerance;
-//   - boundary vertices and the vertices of joints (problems/grid_frame.h) held: on the
-//     reference boundary, corners fixed, the frame's members and joints unchanged;
+//   - boundary vertices (and joints that have one) held: on the reference boundary, corners
+//     fixed; the frame's members and joints unchanged (hinges; a step that changes them is
+//     refused);
 //   - members no shorter than max(1.1 × section depth, stiffen.min_member × planarised
 //     length) (EdgeLengthResidual hinge);
 //   - panel kinks: the mesh polylines keep their planarised second differences
 //     (FairnessChangeResidual, stiffen.weights.fairness, part of the objective).
 //
-// Method: projected gradient with a smoothing metric, each step one Ceres least-squares
-// solve. At iterate x_k with g = ∇C/C₀ (adjoint, one CHOLMOD factorisation) the step solves
-//   min_x  ½ Σ_v |x_v − x_k,v + μ g_v|²/μ            (ProximalStepResidual: g·Δ + |Δ|²/2μ)
-//        + ½ β/μ Σ_polylines |D²(x − x_k)|²          (smoothing metric, β = (ℓ/h)⁴, ℓ = stiffen.smoothing × h)
-//        + fairness change + member hinge + planarity penalty,
-//   x in the tolerance boxes (Ceres parameter bounds on the local coordinates),
-// i.e. a proximal-gradient step on F = C/C₀ + fairness + hinge with the exact least-squares
-// parts and the box handled by Ceres; g is replaced by the L-BFGS direction H g once a
-// curvature pair exists (μ = 1 then). A step is kept when F falls (μ × 1.5), else retried
-// shorter (μ × 0.3, or from the plain gradient after an L-BFGS step failed).
-// MEASURED LIMIT (issue 16 stays open): on the Great Court (strain, h = 3 m, t = 0.1 m) this
-// gains 2.3 % (C/C₀ 0.977), where the same iteration without planarity reaches 0.61 in 9
-// steps: the planarity penalty in each step cuts the quasi-Newton direction to a sliver of
-// itself, and the curvature pairs learn the unconstrained problem. Projecting the gradient
-// onto the planarity constraints' tangent space first (tried: 0.960) breaks the use of the
-// planarity budget. The next attempt should be an SQP step on the linearised planarity with
-// multipliers, or an offset basis that is planar by construction. Why not the alternatives:
-//   - Ceres' GradientProblem solvers take no constraints, and C is not a sum of squares (a
-//     residual √C couples every vertex, a dense Jacobian row);
-//   - an augmented Lagrangian around L-BFGS-B (the issue's numpy prototype) stalled at 4,256
-//     nodes: planarity and the tolerance fight the quasi-Newton model;
-//   - IPOPT would add a dependency and a dense-ish Hessian approximation for one stage.
-// Here the constraints are the planarize stage's own least-squares terms, solved exactly
-// with sparse Cholesky every step, and the metric term makes each step smooth (the optimal
-// change is smooth: 10–20 m on the Great Court), which keeps the iteration count from
-// growing with the mesh.
+// Method: an augmented Lagrangian around L-BFGS (Ceres' GradientProblemSolver), as the
+// issue's numpy prototype did around L-BFGS-B:
+//   L(z) = C(x)/C₀ + fairness change + member hinge + joint hinge
+//          + Σ_sub-quads (1/2ρ) max(0, λ + ρ (δ − 0.9 × target))²      (PlanarityLagrangianResidual)
+//   x = f + R q per vertex, q = centre + radius ∘ sin z: the box is built into the variables,
+//   so the tolerance holds at every iterate without bounds (which Ceres' line-search
+//   minimiser does not take).
+// C and ∇C come from the adjoint (problems/grid_frame.h, one CHOLMOD factorisation per
+// evaluation); the penalty terms are Ceres residual functors on the world positions whose
+// cost and gradient ceres::Problem::Evaluate returns. Rounds of ≤ 100 L-BFGS iterations,
+// λ ← max(0, λ + ρ g) after each, ρ ×10 when the violation fell by less than ¾ (≤ 1e9),
+// until δ ≤ 0.9 × target and a round converges or stiffen.max_iterations is spent. If δ
+// still exceeds the target, RestorePlanarity (a Ceres least-squares projection inside the
+// boxes) puts it back.
+// Why not the alternatives (tried, README): steps of a projected gradient, each a Ceres
+// least-squares solve with the planarity as a penalty, gained 2 % on the Great Court: the
+// penalty cuts every quasi-Newton step to a sliver; IPOPT would add a dependency for one
+// stage. Joints whose vertices are all interior move (their edge kept below 0.9 × depth by
+// a hinge); the prototype moved them rigidly; holding them instead cost 5 points of ratio
+// on the strain grid (0.79 vs 0.74).
 #pragma once
 
 #include <vector>

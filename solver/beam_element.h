@@ -98,4 +98,17 @@ Matrix12<T> WorldBeamStiffness(const Eigen::Matrix<T, 3, 1>& a, const Eigen::Mat
   return Tm.transpose() * LocalBeamStiffness<T>((b - a).norm(), s, m) * Tm;
 }
 
+// uᵀ K u for the member's world DOFs u (twice its strain energy), as (T u)ᵀ k (T u): four 3×3
+// rotations instead of two 12×12 products, for the per-member autodiff of the compliance
+// gradient (a Jet evaluation of WorldBeamStiffness costs ~100× more).
+template <typename T>
+T BeamEnergyTwice(const Eigen::Matrix<T, 3, 1>& a, const Eigen::Matrix<T, 3, 1>& b, const Eigen::Matrix<T, 3, 1>& up,
+                  const Eigen::Matrix<double, 12, 1>& u, const FrameSection& s, const FrameMaterial& m) {
+  const Eigen::Matrix<T, 3, 3> R = MemberFrame<T>(a, b, up);
+  Eigen::Matrix<T, 12, 1> local;
+  for (int k = 0; k < 4; ++k) local.template segment<3>(3 * k) = R * u.segment<3>(3 * k).template cast<T>();
+  const Matrix12<T> k = LocalBeamStiffness<T>((b - a).norm(), s, m);
+  return local.dot(k * local);
+}
+
 }  // namespace pqlayout

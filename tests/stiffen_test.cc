@@ -9,6 +9,12 @@
 #include "geometry/closest_point.h"
 #include "geometry/planarity.h"
 #include "problems/stiffen.h"
+#include "problems/residuals/fairness_change_residual.h"
+#include "problems/residuals/joint_length_residual.h"
+#include "problems/residuals/planarity_budget_residual.h"
+#include "problems/residuals/planarity_lagrangian_residual.h"
+#include "solver/framed_point_cost.h"
+#include "tests/gradient_check.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -160,6 +166,38 @@ TEST(Stiffen, ANearlyFlatGridRisesByTheTolerance) {
   }
   EXPECT_LE(report.planarity_max, target);
   EXPECT_LE(report.closeness_max, options.tolerance);
+}
+
+// Every residual functor of the stiffen stage against finite differences.
+TEST(StiffenResiduals, JacobiansMatchFiniteDifferences) {
+  using testing::ExpectJacobiansMatchFiniteDifferences;
+  const std::vector<double> a{0.1, 0.2, 0.05}, b{1.1, 0.1, 0.3}, c{1.2, 1.05, -0.1}, d{0.05, 0.9, 0.2};
+  const double lambda = 0.3, rho = 1e4;
+  ExpectJacobiansMatchFiniteDifferences("planarity (Lagrangian)", PlanarityLagrangianResidual::Create(&lambda, &rho, 1e-3),
+                                        {a, b, c, d});
+  const std::vector<double> plane{0.1, 0.2, 0.97467943, 0.3};
+  ExpectJacobiansMatchFiniteDifferences("planarity (budget)", PlanarityBudgetResidual::Create(1e6, 1.4, 1e-4), {plane, b});
+  ExpectJacobiansMatchFiniteDifferences("fairness change",
+                                        FairnessChangeResidual::Create(Eigen::Vector3d(0.1, -0.2, 0.05), 0.1, 3.0), {a, b, c});
+  ExpectJacobiansMatchFiniteDifferences("joint length", JointLengthResidual::Create(0.5, 1e4, 3.0), {a, b});
+  // The local-frame adapter: the planarity functor seen through a rotated, shifted frame.
+  PointFrame frame;
+  frame.origin = Eigen::Vector3d(1.0, 2.0, 3.0);
+  frame.rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  ExpectJacobiansMatchFiniteDifferences(
+      "framed point", new FramedPointCost(PlanarityBudgetResidual::Create(1e6, 1.4, 0.0), {nullptr, &frame}), {plane, b});
+}
+
+// The Lagrangian term is exactly (1/2ρ) max(0, λ + ρ g)² (up to −λ²/2ρ) with g = δ − δ_allowed.
+TEST(StiffenResiduals, LagrangianTermIsThePowellHestenesRockafellarPenalty) {
+  const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0.02), c(1, 1, 0), d(0, 1, 0.02);
+  const double delta = QuadPlanarityDelta(a, b, c, d), lambda = 2.0, rho = 1e4, allowed = 1e-3;
+  const PlanarityLagrangianResidual term(&lambda, &rho, allowed);
+  double r = 0.0;
+  term(a.data(), b.data(), c.data(), d.data(), &r);
+  const double g = delta - allowed;
+  EXPECT_NEAR(0.5 * r * r, std::pow(std::max(0.0, lambda + rho * g), 2) / (2 * rho), 1e-12);
+  EXPECT_GT(delta, 0.01);
 }
 
 }  // namespace

@@ -1,0 +1,161 @@
+#include "problems/stiffen_problem.h"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/interrupt.h"
+#include "geometry/planarity.h"
+#include "problems/residuals/anchor_residual.h"
+#include "problems/residuals/planarity_budget_residual.h"
+#include "solver/ceres_options.h"
+
+namespace pqlayout {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+constexpr double kMinMemberOfDepth = 1.1;  // members ≥ 1.1 × section depth
+constexpr double kJointOfDepth = 0.9;      // joints ≤ 0.9 × section depth
+
+// Each vertex's frame (tangents and normal of the reference at the foot point of its
+// planarised position) and box (problems/stiffen.h). Vertices that cannot move are held.
+void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, const GridFrame& frame,
+                    const StiffenOptions& o, StiffenProblem* P, std::vector<Vec3>* q) {
+  const int n = static_cast<int>(mesh.mesh.n_vertices());
+  // A joint (frame node of several vertices) with a vertex on the boundary is held whole.
+  std::vector<bool> node_held(frame.model.nodes.size(), false);
+  for (int v = 0; v < n; ++v)
+    if (mesh.origin[v].on_boundary || mesh.origin[v].corner) node_held[frame.node_of[v]] = true;
+  P->frames.resize(n), P->lower.resize(n), P->upper.resize(n), P->held.assign(n, false), q->resize(n);
+  const double t = o.tolerance * (1.0 - 1e-9);
+  for (int v = 0; v < n; ++v) {
+    const Vec3 p = ToEigen(mesh.mesh.point(VertexHandle(v)));
+    const SurfacePoint foot = query.OnSurface(p);
+    const Vec3 normal = foot.normal.normalized();
+    const Vec3 e1 = normal.unitOrthogonal(), e2 = normal.cross(e1);
+    PointFrame& f = P->frames[v];
+    f.origin = foot.point;
+    f.rotation.col(0) = e1, f.rotation.col(1) = e2, f.rotation.col(2) = normal;
+    Vec3& local = (*q)[v] = f.ToLocal(p);
+    const double a = std::abs(local[0]) + o.slide, b = std::abs(local[1]) + o.slide;
+    const double normal_room = t * t - a * a - b * b;
+    P->held[v] = node_held[frame.node_of[v]] || normal_room <= 0.0;
+    if (P->held[v]) {
+      f.origin = p, f.rotation.setIdentity(), local.setZero();  // exactly where it is
+      P->lower[v] = P->upper[v] = local;
+      continue;
+    }
+    const double s = std::sqrt(normal_room);
+    P->lower[v] = Vec3(local[0] - o.slide, local[1] - o.slide, -s);
+    P->upper[v] = Vec3(local[0] + o.slide, local[1] + o.slide, s);
+    local[2] = std::clamp(local[2], -s, s);  // a planarised vertex farther than t comes in
+  }
+}
+
+Vec3 SecondDifference(const std::vector<Vec3>& x, const std::array<int, 3>& t) { return x[t[0]] - 2.0 * x[t[1]] + x[t[2]]; }
+
+}  // namespace
+
+void SetUpStiffenProblem(const ClosestPointQuery& query, const ExtractedMesh& mesh, const GridFrame& frame,
+                         const SectionOptions& section, const StiffenOptions& o, double spacing, StiffenProblem* P,
+                         std::vector<Vec3>* q) {
+  P->h = spacing;
+  P->weights = o.weights;
+  SetUpVariables(query, mesh, frame, o, P, q);
+  const PolyMesh& m = mesh.mesh;
+  std::vector<Vec3> x0(m.n_vertices());
+  for (const auto v : m.vertices()) x0[v.idx()] = ToEigen(m.point(v));
+  for (const auto f : m.faces()) {
+    std::vector<int> ids;
+    for (const auto v : m.fv_range(f)) ids.push_back(v.idx());
+    P->faces.push_back(ids);
+    const int k = static_cast<int>(ids.size());
+    for (int i = 0; i < k; ++i)
+      for (int j = i + 1; j < k; ++j)
+        for (int l = j + 1; l < k; ++l)
+          for (int r = l + 1; r < k; ++r) P->sub_quads.push_back({ids[i], ids[j], ids[l], ids[r]});
+  }
+  for (const auto v : m.vertices()) {
+    if (m.is_boundary(v) || m.valence(v) != 4) continue;
+    std::vector<int> ring;
+    for (const auto w : m.vv_range(v)) ring.push_back(w.idx());
+    P->triples.push_back({ring[0], v.idx(), ring[2]});
+    P->triples.push_back({ring[1], v.idx(), ring[3]});
+  }
+  for (const auto& t : P->triples) P->second_difference0.push_back(SecondDifference(x0, t));
+  P->joint_max_length = kJointOfDepth * SectionDepth(section);
+  for (const auto e : m.edges()) {
+    const auto he = m.halfedge_handle(e, 0);
+    const int i = m.from_vertex_handle(he).idx(), j = m.to_vertex_handle(he).idx();
+    if (frame.node_of[i] == frame.node_of[j]) P->joint_edges.emplace_back(i, j);
+  }
+  for (const auto& [i, j] : frame.member_vertices) {
+    const double length = (x0[i] - x0[j]).norm();
+    P->members.emplace_back(i, j, std::min(length, std::max(kMinMemberOfDepth * SectionDepth(section), o.min_member * length)));
+  }
+}
+
+std::vector<Vec3> World(const StiffenProblem& P, const std::vector<Vec3>& q) {
+  std::vector<Vec3> x(q.size());
+  for (size_t v = 0; v < q.size(); ++v) x[v] = P.frames[v].ToWorld(q[v]);
+  return x;
+}
+
+void SetPoints(const std::vector<Vec3>& x, PolyMesh* mesh) {
+  for (size_t v = 0; v < x.size(); ++v) mesh->set_point(VertexHandle(static_cast<int>(v)), {x[v].x(), x[v].y(), x[v].z()});
+}
+
+double MaxPlanarity(const StiffenProblem& P, const std::vector<Vec3>& x) {
+  double delta = 0.0;
+  std::vector<Vec3> polygon;
+  for (const auto& face : P.faces) {
+    polygon.clear();
+    for (const int v : face) polygon.push_back(x[v]);
+    delta = std::max(delta, PlanarityDelta(polygon));
+  }
+  return delta;
+}
+
+Status RestorePlanarity(const StiffenProblem& P, double target_delta, std::vector<Vec3>* q) {
+  double weight = 1e6, budget = 0.4 * target_delta;  // per-vertex plane distance ε ≈ δ/2
+  for (int round = 0; round < 8 && MaxPlanarity(P, World(P, *q)) > target_delta; ++round, weight *= 10.0, budget *= 0.7) {
+    const std::vector<Vec3> xk = World(P, *q);
+    ceres::Problem problem;
+    for (size_t v = 0; v < q->size(); ++v) {
+      double* block = (*q)[v].data();
+      problem.AddParameterBlock(block, 3);
+      if (P.held[v]) {
+        problem.SetParameterBlockConstant(block);
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        problem.SetParameterLowerBound(block, k, P.lower[v][k]);
+        problem.SetParameterUpperBound(block, k, P.upper[v][k]);
+      }
+      problem.AddResidualBlock(new FramedPointCost(AnchorResidual::Create(xk[v], 1.0, P.h), {&P.frames[v]}), nullptr, block);
+    }
+    std::vector<std::array<double, 4>> planes(P.faces.size());
+    for (size_t f = 0; f < P.faces.size(); ++f) {
+      if (P.faces[f].size() < 4) continue;
+      std::vector<Vec3> polygon;
+      for (const int v : P.faces[f]) polygon.push_back(xk[v]);
+      const FacePlane plane = FitPolygonPlane(polygon);
+      planes[f] = {plane.n.x(), plane.n.y(), plane.n.z(), plane.d};
+      problem.AddParameterBlock(planes[f].data(), 4,
+                                new ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>());
+      for (const int v : P.faces[f])
+        problem.AddResidualBlock(
+            new FramedPointCost(PlanarityBudgetResidual::Create(weight, plane.mean_diagonal, budget), {nullptr, &P.frames[v]}),
+            nullptr, planes[f].data(), (*q)[v].data());
+    }
+    ceres::Solver::Summary summary;
+    ceres::Solve(SparseCholeskyOptions(50), &problem, &summary);
+    if (!summary.IsSolutionUsable()) return Status::Internal("stiffen: Ceres failed restoring planarity: " + summary.message);
+    PQ_RETURN_IF_ERROR(CheckInterrupt());
+  }
+  return Status::Ok();
+}
+
+}  // namespace pqlayout
