@@ -131,9 +131,9 @@ class Lagrangian final : public ceres::FirstOrderFunction {
       if (P.weights.edge_length > 0.0 && !(P.held[i] && P.held[j]))
         penalties_->AddResidualBlock(EdgeLengthResidual::Create(min_length, P.weights.edge_length, P.h), nullptr,
                                      Block(i), Block(j));
-    for (const auto& [i, j] : P.joint_edges)
+    for (const auto& [i, j, max_length] : P.joint_edges)
       if (!(P.held[i] && P.held[j]))
-        penalties_->AddResidualBlock(JointLengthResidual::Create(P.joint_max_length, kJointWeight, P.h), nullptr,
+        penalties_->AddResidualBlock(JointLengthResidual::Create(max_length, kJointWeight, P.h), nullptr,
                                      Block(i), Block(j));
     for (const int v : free_) evaluate_options_.parameter_blocks.push_back(Block(v));
   }

@@ -85,11 +85,11 @@ void SetUpStiffenProblem(const ClosestPointQuery& query, const ExtractedMesh& me
     P->triples.push_back({ring[1], v.idx(), ring[3]});
   }
   for (const auto& t : P->triples) P->second_difference0.push_back(SecondDifference(x0, t));
-  P->joint_max_length = kJointOfDepth * SectionDepth(section);
   for (const auto e : m.edges()) {
     const auto he = m.halfedge_handle(e, 0);
     const int i = m.from_vertex_handle(he).idx(), j = m.to_vertex_handle(he).idx();
-    if (frame.node_of[i] == frame.node_of[j]) P->joint_edges.emplace_back(i, j);
+    if (frame.node_of[i] == frame.node_of[j])  // no longer than 0.9 × depth, or than it already is
+      P->joint_edges.emplace_back(i, j, std::max(kJointOfDepth * SectionDepth(section), (x0[i] - x0[j]).norm()));
   }
   for (const auto& [i, j] : frame.member_vertices) {
     const double length = (x0[i] - x0[j]).norm();

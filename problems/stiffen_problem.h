@@ -28,8 +28,7 @@ struct StiffenProblem {
   std::vector<std::array<int, 3>> triples;            // mesh polylines a–v–b at valence-4 interior vertices
   std::vector<Eigen::Vector3d> second_difference0;    // their planarised second differences
   std::vector<std::tuple<int, int, double>> members;  // (i, j, minimum length)
-  std::vector<std::pair<int, int>> joint_edges;       // mesh edges that are joints (shorter than the depth)
-  double joint_max_length = 0.0;                      // 0.9 × section depth
+  std::vector<std::tuple<int, int, double>> joint_edges;  // joints (edges shorter than the depth): (i, j, maximum length)
   double h = 1.0;
   StiffenWeights weights;
 };

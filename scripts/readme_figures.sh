@@ -29,3 +29,4 @@ build/cli/pqlayout compare examples/great_court.yaml --out out/readme_compare -q
 bash scripts/check_report.sh out/readme_compare/report.html
 png out/readme_compare/figures/compliance_strain.svg 600 docs/figures/compliance_strain.png
 png out/readme_compare/figures/compliance_curvature.svg 600 docs/figures/compliance_curvature.png
+for g in strain curvature; do png out/readme_compare/$g/figures/offset.svg 600 docs/figures/offset_$g.png; done

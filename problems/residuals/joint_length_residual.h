@@ -1,6 +1,6 @@
 // Joint length (per mesh edge (i, j) shorter than the section depth, stiffen): the edge is a
 // joint of the frame (its ends are one node, problems/grid_frame.h) and must stay one, so a
-// hinge keeps it below ℓ_max = 0.9 × section depth:
+// hinge keeps it below ℓ_max = max(0.9 × section depth, its planarised length):
 //   r_ij = √w · max(0, |p_i − p_j| − ℓ_max) / h
 // zero while the edge is shorter.
 // Parameters: p_i (3), p_j (3).
