@@ -176,10 +176,11 @@ void StiffnessTerms(const PolyMesh& mesh, const GridFrame& frame, const FrameRes
 }  // namespace
 
 Status EvaluateGridCompliance(const PolyMesh& mesh, const std::vector<Restraints>& vertex_restraints,
-                              const AnalysisOptions& a, bool with_gradient, GridCompliance* out) {
+                              const AnalysisOptions& a, bool with_gradient, GridCompliance* out,
+                              CholmodSolver* reuse) {
   out->frame = GridFrame();
   BuildGridFrame(mesh, vertex_restraints, a, &out->frame);
-  PQ_RETURN_IF_ERROR(SolveFrame(out->frame.model, &out->result));
+  PQ_RETURN_IF_ERROR(SolveFrame(out->frame.model, &out->result, reuse));
   out->compliance = out->result.compliance;
   out->gradient.clear();
   if (!with_gradient) return Status::Ok();

@@ -65,7 +65,9 @@ struct GridCompliance {
 };
 
 // Builds and solves the frame of `mesh`; with `with_gradient`, also dC/dp (header comment).
+// reuse: see SolveFrame.
 Status EvaluateGridCompliance(const PolyMesh& mesh, const std::vector<Restraints>& vertex_restraints,
-                              const AnalysisOptions& a, bool with_gradient, GridCompliance* out);
+                              const AnalysisOptions& a, bool with_gradient, GridCompliance* out,
+                              CholmodSolver* reuse = nullptr);
 
 }  // namespace pqlayout

@@ -21,6 +21,7 @@
 #include "problems/residuals/planarity_lagrangian_residual.h"
 #include "problems/stiffen_problem.h"
 #include "solver/ceres_options.h"
+#include "solver/cholmod_solver.h"
 
 namespace pqlayout {
 
@@ -200,6 +201,7 @@ class Lagrangian final : public ceres::FirstOrderFunction {
   double rho_ = kPenaltyStart;
   std::unique_ptr<ceres::Problem> penalties_;
   ceres::Problem::EvaluateOptions evaluate_options_;
+  mutable CholmodSolver solver_;  // keeps the frame's symbolic analysis across evaluations
 };
 
 // ceres::GradientProblem owns its function; the Lagrangian outlives the rounds, so each
@@ -226,7 +228,7 @@ bool Lagrangian::Evaluate(const double* z, double* cost, double* gradient) const
   const auto start = std::chrono::steady_clock::now();
   SetPoints(x, mesh_);
   GridCompliance c;
-  const Status status = EvaluateGridCompliance(*mesh_, restraints_, analysis_, gradient != nullptr, &c);
+  const Status status = EvaluateGridCompliance(*mesh_, restraints_, analysis_, gradient != nullptr, &c, &solver_);
   report_->seconds_frame += Seconds(start);
   ++report_->evaluations;
   if (!status.ok() || c.frame.joints != joints_) return false;  // a mechanism, or a member became a joint

@@ -98,17 +98,26 @@ Matrix12<T> WorldBeamStiffness(const Eigen::Matrix<T, 3, 1>& a, const Eigen::Mat
   return Tm.transpose() * LocalBeamStiffness<T>((b - a).norm(), s, m) * Tm;
 }
 
-// uᵀ K u for the member's world DOFs u (twice its strain energy), as (T u)ᵀ k (T u): four 3×3
-// rotations instead of two 12×12 products, for the per-member autodiff of the compliance
-// gradient (a Jet evaluation of WorldBeamStiffness costs ~100× more).
+// uᵀ K u for the member's world DOFs u (twice its strain energy), from the local DOFs
+// l = T u (four 3×3 rotations) in closed form, the quadratic forms of LocalBeamStiffness:
+//   EA/L (l₆ − l₀)² + GJ/L (l₉ − l₃)²
+//   + E I_z/L³ [12 (l₁ − l₇)² + 12 L (l₁ − l₇)(l₅ + l₁₁) + 4 L² (l₅² + l₅ l₁₁ + l₁₁²)]
+//   + E I_y/L³ [12 (l₂ − l₈)² − 12 L (l₂ − l₈)(l₄ + l₁₀) + 4 L² (l₄² + l₄ l₁₀ + l₁₀²)]
+// For the per-member autodiff of the compliance gradient: a Jet evaluation of
+// WorldBeamStiffness costs ~100× more (tests/stiffen_test.cc checks the two agree).
 template <typename T>
 T BeamEnergyTwice(const Eigen::Matrix<T, 3, 1>& a, const Eigen::Matrix<T, 3, 1>& b, const Eigen::Matrix<T, 3, 1>& up,
                   const Eigen::Matrix<double, 12, 1>& u, const FrameSection& s, const FrameMaterial& m) {
   const Eigen::Matrix<T, 3, 3> R = MemberFrame<T>(a, b, up);
-  Eigen::Matrix<T, 12, 1> local;
-  for (int k = 0; k < 4; ++k) local.template segment<3>(3 * k) = R * u.segment<3>(3 * k).template cast<T>();
-  const Matrix12<T> k = LocalBeamStiffness<T>((b - a).norm(), s, m);
-  return local.dot(k * local);
+  Eigen::Matrix<T, 12, 1> l;
+  for (int k = 0; k < 4; ++k) l.template segment<3>(3 * k) = R * u.segment<3>(3 * k).template cast<T>();
+  const T L = (b - a).norm();
+  const double E = m.youngs_modulus, G = m.shear_modulus;
+  const T axial = l[6] - l[0], twist = l[9] - l[3], v = l[1] - l[7], w = l[2] - l[8];
+  const T bend_z = T(12.0) * v * v + T(12.0) * L * v * (l[5] + l[11]) + T(4.0) * L * L * (l[5] * l[5] + l[5] * l[11] + l[11] * l[11]);
+  const T bend_y = T(12.0) * w * w - T(12.0) * L * w * (l[4] + l[10]) + T(4.0) * L * L * (l[4] * l[4] + l[4] * l[10] + l[10] * l[10]);
+  return E * s.area / L * axial * axial + G * s.torsion / L * twist * twist +
+         E * s.inertia_z / (L * L * L) * bend_z + E * s.inertia_y / (L * L * L) * bend_y;
 }
 
 }  // namespace pqlayout

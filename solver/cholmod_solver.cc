@@ -3,7 +3,9 @@
 #include <cholmod.h>
 
 #include <cmath>
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "solver/numerics.h"
 
@@ -12,6 +14,7 @@ namespace pqlayout {
 struct CholmodSolver::Impl {
   cholmod_common common;
   cholmod_factor* factor = nullptr;
+  std::vector<int> pattern_outer, pattern_inner;  // sparsity pattern the factor was analysed for
   Impl() {
     cholmod_start(&common);
     // One thread (the default): simplicial LLᵀ, CHOLMOD's own loops, no BLAS, so the factor
@@ -36,8 +39,18 @@ CholmodSolver::~CholmodSolver() = default;
 bool CholmodSolver::factorized() const { return impl_->factor != nullptr; }
 bool CholmodSolver::is_supernodal() const { return impl_->factor && impl_->factor->is_super; }
 
-Status CholmodSolver::Factorize(const Eigen::SparseMatrix<double>& A_in) {
-  if (impl_->factor) cholmod_free_factor(&impl_->factor, &impl_->common);
+Status CholmodSolver::Factorize(const Eigen::SparseMatrix<double>& A_in, bool reuse_analysis) {
+  // The previous factor's symbolic analysis (ordering, elimination tree) is kept only for
+  // the same sparsity pattern; cholmod_factorize then redoes the numbers alone.
+  cholmod_factor* previous = impl_->factor;
+  impl_->factor = nullptr;
+  struct FreeUnused {  // the previous factor, unless it is reused below
+    cholmod_factor** factor;
+    cholmod_common* common;
+    ~FreeUnused() {
+      if (*factor) cholmod_free_factor(factor, common);
+    }
+  } free_unused{&previous, &impl_->common};
   rows_ = 0;
   failed_row_ = -1;
   rcond_ = 0.0;
@@ -67,7 +80,20 @@ Status CholmodSolver::Factorize(const Eigen::SparseMatrix<double>& A_in) {
   view.packed = 1;
 
   cholmod_common* c = &impl_->common;
-  impl_->factor = cholmod_analyze(&view, c);
+  const bool same_pattern =
+      reuse_analysis && previous != nullptr &&
+      impl_->pattern_outer.size() == static_cast<size_t>(A.outerSize() + 1) &&
+      impl_->pattern_inner.size() == static_cast<size_t>(A.nonZeros()) &&
+      std::equal(impl_->pattern_outer.begin(), impl_->pattern_outer.end(), A.outerIndexPtr()) &&
+      std::equal(impl_->pattern_inner.begin(), impl_->pattern_inner.end(), A.innerIndexPtr());
+  if (same_pattern) {
+    impl_->factor = previous;
+    previous = nullptr;
+  } else {
+    impl_->factor = cholmod_analyze(&view, c);
+    impl_->pattern_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+    impl_->pattern_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  }
   if (!impl_->factor) return Status::Internal("CHOLMOD analyze failed (status " + std::to_string(c->status) + ")");
   cholmod_factorize(&view, impl_->factor, c);
   if (c->status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {

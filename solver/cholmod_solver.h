@@ -26,8 +26,10 @@ class CholmodSolver {
 
   // Analyses and factors A (n by n, symmetric positive definite; both triangles stored).
   // InvalidInput if A is not square, not finite or not symmetric; Internal if it is not
-  // positive definite (the message names the failing column).
-  Status Factorize(const Eigen::SparseMatrix<double>& A);
+  // positive definite (the message names the failing column). With reuse_analysis, a matrix
+  // with exactly the previous one's sparsity pattern keeps its symbolic analysis (fill-
+  // reducing ordering), and only the numeric factorisation is redone (stiffen's iterations).
+  Status Factorize(const Eigen::SparseMatrix<double>& A, bool reuse_analysis = false);
 
   // Solves A x = b with the last successful factorisation (b: n by k).
   Status Solve(const Eigen::MatrixXd& b, Eigen::MatrixXd* x) const;
@@ -44,7 +46,7 @@ class CholmodSolver {
 
  private:
   struct Impl;
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Impl> impl_;  // also the pattern of the analysed matrix
   int rows_ = 0;
   int failed_row_ = -1;
   double rcond_ = 0.0;

@@ -61,7 +61,7 @@ Status CheckModel(const FrameModel& m) {
 
 }  // namespace
 
-Status SolveFrame(const FrameModel& m, FrameResult* r) {
+Status SolveFrame(const FrameModel& m, FrameResult* r, CholmodSolver* reuse) {
   PQ_RETURN_IF_ERROR(CheckModel(m));
   const int n = static_cast<int>(m.nodes.size());
   // Free DOFs numbered consecutively.
@@ -93,8 +93,9 @@ Status SolveFrame(const FrameModel& m, FrameResult* r) {
   Eigen::SparseMatrix<double> K(free, free);
   K.setFromTriplets(triplets.begin(), triplets.end());
 
-  CholmodSolver solver;
-  const Status factored = solver.Factorize(K);
+  CholmodSolver own;
+  CholmodSolver& solver = reuse != nullptr ? *reuse : own;
+  const Status factored = solver.Factorize(K, reuse != nullptr);
   auto unsupported = [&](int row, const std::string& why) {
     int node = -1, dof = -1;
     for (int k = 0; k < 6 * n; ++k)

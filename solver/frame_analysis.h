@@ -52,6 +52,9 @@ struct FrameResult {
 // Names a DOF for messages: "u_x", ..., "θ_z".
 const char* DofName(int dof);
 
-Status SolveFrame(const FrameModel& model, FrameResult* result);
+class CholmodSolver;
+// reuse (optional): a solver kept across calls; a stiffness matrix with the previous call's
+// sparsity pattern (same members and supports) then keeps CHOLMOD's symbolic analysis.
+Status SolveFrame(const FrameModel& model, FrameResult* result, CholmodSolver* reuse = nullptr);
 
 }  // namespace pqlayout

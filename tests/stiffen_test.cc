@@ -168,6 +168,22 @@ TEST(Stiffen, ANearlyFlatGridRisesByTheTolerance) {
   EXPECT_LE(report.closeness_max, options.tolerance);
 }
 
+// The closed-form member energy the gradient differentiates equals uᵀ K u of the element.
+TEST(ComplianceGradient, ClosedFormMemberEnergyEqualsTheElementStiffness) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> r(-1.0, 1.0);
+  const FrameSection s = FrameSection::RectangularHollow(0.06, 0.12, 0.005);
+  FrameMaterial m;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Vector3d a(r(rng), r(rng), r(rng)), b = a + Eigen::Vector3d(2.0 + r(rng), r(rng), r(rng)),
+                          up(r(rng), r(rng), 1.0);
+    Eigen::Matrix<double, 12, 1> u;
+    for (int k = 0; k < 12; ++k) u[k] = 1e-3 * r(rng);
+    const double reference = u.dot(WorldBeamStiffness<double>(a, b, up, s, m) * u);
+    EXPECT_NEAR(BeamEnergyTwice<double>(a, b, up, u, s, m), reference, 1e-10 * std::abs(reference)) << trial;
+  }
+}
+
 // Every residual functor of the stiffen stage against finite differences.
 TEST(StiffenResiduals, JacobiansMatchFiniteDifferences) {
   using testing::ExpectJacobiansMatchFiniteDifferences;
