@@ -87,7 +87,8 @@ constexpr double kPenaltyStart = 1e4;     // ρ × (δ excess)² against C/C₀ 
 constexpr double kPenaltyRaise = 10.0;    // when a round cut the violation by less than kViolationCut
 constexpr double kViolationCut = 0.25;
 constexpr double kPenaltyMax = 1e9;       // beyond, L-BFGS stalls on the conditioning
-constexpr double kFeasible = 1e-3;        // a violation below this × δ_allowed counts as met
+constexpr double kRoundGain = 1e-3;       // a feasible round that lowers L by less than this (relative) ends the stage
+constexpr double kFeasible = 0.02;        // a violation below this × δ_allowed counts as met (δ ≤ 0.918 × target)
 constexpr double kJointWeight = 1e4;      // joints stay joints (the frame's topology is fixed)
 constexpr int kRounds = 20;               // multiplier updates at most
 constexpr int kRoundIterations = 100;     // L-BFGS iterations per round at most
@@ -298,7 +299,9 @@ Status MinimiseLagrangian(Lagrangian* L, const StiffenOptions& options, std::vec
     LOG(INFO) << "stiffen: round " << round + 1 << ": " << iterations << " L-BFGS iterations, L " << summary.initial_cost << " → " << summary.final_cost
               << ", δ max above " << L->allowed() << " by " << violation << ", ρ " << rho;
     const bool feasible = violation <= kFeasible * L->allowed();
-    if (feasible && (summary.termination_type == ceres::CONVERGENCE || iterations <= 1)) break;
+    const bool stalled = summary.initial_cost - summary.final_cost < kRoundGain * summary.initial_cost;
+    if (feasible && (summary.termination_type == ceres::CONVERGENCE || iterations <= 1 || stalled)) break;
+    if (iterations == 0) break;  // the line search found no descent: more ρ only makes it worse
     if (!feasible && violation > kViolationCut * previous) rho = std::min(kPenaltyMax, rho * kPenaltyRaise);
     previous = violation;
   }
