@@ -18,6 +18,7 @@ using Vec3 = Eigen::Vector3d;
 
 constexpr double kMinMemberOfDepth = 1.1;  // members ≥ 1.1 × section depth
 constexpr double kJointOfDepth = 0.9;      // joints ≤ 0.9 × section depth
+constexpr double kSlideOfTolerance = 0.25; // the tangential slide is at most this × the tolerance
 
 // Each vertex's frame (tangents and normal of the reference at the foot point of its
 // planarised position) and box (problems/stiffen.h). Vertices that cannot move are held.
@@ -30,6 +31,7 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
     if (mesh.origin[v].on_boundary || mesh.origin[v].corner) node_held[frame.node_of[v]] = true;
   P->frames.resize(n), P->lower.resize(n), P->upper.resize(n), P->held.assign(n, false), q->resize(n);
   const double t = o.tolerance * (1.0 - 1e-9);
+  const double slide = std::min(o.slide, kSlideOfTolerance * o.tolerance);  // leaves the normal ≥ 0.93 t
   for (int v = 0; v < n; ++v) {
     const Vec3 p = ToEigen(mesh.mesh.point(VertexHandle(v)));
     const SurfacePoint foot = query.OnSurface(p);
@@ -39,7 +41,7 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
     f.origin = foot.point;
     f.rotation.col(0) = e1, f.rotation.col(1) = e2, f.rotation.col(2) = normal;
     Vec3& local = (*q)[v] = f.ToLocal(p);
-    const double a = std::abs(local[0]) + o.slide, b = std::abs(local[1]) + o.slide;
+    const double a = std::abs(local[0]) + slide, b = std::abs(local[1]) + slide;
     const double normal_room = t * t - a * a - b * b;
     P->held[v] = node_held[frame.node_of[v]] || normal_room <= 0.0;
     if (P->held[v]) {
@@ -48,8 +50,8 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
       continue;
     }
     const double s = std::sqrt(normal_room);
-    P->lower[v] = Vec3(local[0] - o.slide, local[1] - o.slide, -s);
-    P->upper[v] = Vec3(local[0] + o.slide, local[1] + o.slide, s);
+    P->lower[v] = Vec3(local[0] - slide, local[1] - slide, -s);
+    P->upper[v] = Vec3(local[0] + slide, local[1] + slide, s);
     local[2] = std::clamp(local[2], -s, s);  // a planarised vertex farther than t comes in
   }
 }
