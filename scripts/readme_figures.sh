@@ -25,8 +25,9 @@ png out/readme_curvature/figures/levelsets.svg 700 docs/figures/levelsets_curvat
 for f in planarity_initial planarity shell_3d; do png out/readme/figures/$f.svg 600 docs/figures/$f.png; done
 SCREENSHOT_SCALE=0.5 bash scripts/check_report.sh out/readme/report.html docs/figures/report_screenshot.png
 pngquant --quality=60-85 --speed 1 -f -o docs/figures/report_screenshot.png docs/figures/report_screenshot.png
-build/cli/pqlayout compare examples/great_court.yaml --out out/readme_compare -q
+build/cli/pqlayout compare examples/great_court.yaml --out out/readme_compare -q --set stiffen.tolerance=0
+build/cli/pqlayout compare examples/great_court.yaml --out out/readme_compare_stiffened -q
 bash scripts/check_report.sh out/readme_compare/report.html
 png out/readme_compare/figures/compliance_strain.svg 600 docs/figures/compliance_strain.png
 png out/readme_compare/figures/compliance_curvature.svg 600 docs/figures/compliance_curvature.png
-for g in strain curvature; do png out/readme_compare/$g/figures/offset.svg 600 docs/figures/offset_$g.png; done
+for g in strain curvature; do png out/readme_compare_stiffened/$g/figures/offset.svg 600 docs/figures/offset_$g.png; done
