@@ -149,7 +149,7 @@ using Jet9 = ceres::Jet<double, 9>;
 
 // −uᵀ(∂K/∂x)u of every member: to its end nodes (node_gradient) and, through the
 // orientation vector N_i + N_j, to its end vertices' normals (normal_gradient).
-void StiffnessTerms(const PolyMesh& mesh, const GridFrame& frame, const FrameResult& r,
+void StiffnessTerms(const GridFrame& frame, const FrameResult& r,
                     const std::vector<Eigen::Vector3d>& normal, std::vector<Eigen::Vector3d>* node_gradient,
                     std::vector<Eigen::Vector3d>* normal_gradient) {
   const FrameModel& model = frame.model;
@@ -190,7 +190,7 @@ Status EvaluateGridCompliance(const PolyMesh& mesh, const std::vector<Restraints
   const size_t n = point.size();
   std::vector<Eigen::Vector3d> node_gradient(frame.model.nodes.size(), Eigen::Vector3d::Zero());
   std::vector<Eigen::Vector3d> normal_gradient(n, Eigen::Vector3d::Zero());
-  StiffnessTerms(mesh, frame, out->result, normal, &node_gradient, &normal_gradient);
+  StiffnessTerms(frame, out->result, normal, &node_gradient, &normal_gradient);
   auto uz = [&](int v) { return out->result.displacement[frame.node_of[v]][2]; };
   std::vector<Eigen::Vector3d>& g = out->gradient;
   g.assign(n, Eigen::Vector3d::Zero());

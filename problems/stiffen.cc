@@ -48,7 +48,6 @@ nlohmann::json StiffenReport::ToJson() const {
           {"min_member_length", min_member_length},
           {"iterations", iterations},
           {"evaluations", evaluations},
-          {"rejected_steps", rejected_steps},
           {"held_vertices", held_vertices},
           {"frame_seconds", seconds_frame},
           {"ceres_seconds", seconds_ceres}};

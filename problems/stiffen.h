@@ -59,7 +59,7 @@ struct StiffenReport {
   double kink_mean_deg_after = 0.0, kink_max_deg_after = 0.0;
   double steel_mass_change = 0.0;                  // (after − before) / before
   double min_member_length = 0.0;                  // after, m
-  int iterations = 0, evaluations = 0, rejected_steps = 0, held_vertices = 0;
+  int iterations = 0, evaluations = 0, held_vertices = 0;
   double seconds_frame = 0.0, seconds_ceres = 0.0;
   std::vector<double> normal_offset;               // per vertex, m (along the reference normal)
   nlohmann::json ToJson() const;
