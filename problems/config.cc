@@ -253,7 +253,6 @@ KeyTable::KeyTable(Config* c) {
   Number("stiffen.min_member", &st.min_member, Range{0.0, 1.0, true, true}, "no member shorter than this × its planarised length (nor than 1.1 × the section depth)");
   Integer("stiffen.max_iterations", &st.max_iterations, 0, 100000, "L-BFGS iterations in all, one or two frame solves each");
   Number("stiffen.weights.fairness", &st.weights.fairness, NonNegative(kMaxWeight), "mesh polylines keep their planarised second differences (panel kinks)");
-  Number("stiffen.weights.planarity", &st.weights.planarity, Positive(kMaxWeight), "× the start penalty ρ of the planarity constraints (augmented Lagrangian)");
   Number("stiffen.weights.edge_length", &st.weights.edge_length, NonNegative(kMaxWeight), "members stay longer than their minimum");
 
   auto& a = c->analysis;

@@ -122,7 +122,6 @@ struct PlanarizeOptions {
 
 struct StiffenWeights {
   double fairness = 0.1;     // polylines keep the second differences of the planarised mesh (kinks)
-  double planarity = 1.0;    // × the start weight of the planarity penalty (raised until δ ≤ target)
   double edge_length = 1.0;  // members stay longer than max(1.1 × section depth, min_member × planarised length)
 };
 

@@ -90,7 +90,7 @@ std::vector<Restraints> VertexRestraints(const ExtractedMesh& mesh, const Surfac
 }
 
 void BuildGridFrame(const PolyMesh& mesh, const std::vector<Restraints>& vertex_restraints, const AnalysisOptions& a,
-                    GridFrame* frame) {
+                    GridFrame* frame, const std::vector<bool>* joint_edges) {
   FrameModel& model = frame->model;
   model.section = SectionOf(a.section);
   model.material.youngs_modulus = a.material.youngs_modulus;
@@ -109,7 +109,8 @@ void BuildGridFrame(const PolyMesh& mesh, const std::vector<Restraints>& vertex_
   for (int v = 0; v < n; ++v) parent[v] = v;
   for (const auto e : mesh.edges()) {
     const auto [i, j] = EdgeEnds(mesh, e);
-    if ((point[i] - point[j]).norm() < SectionDepth(a.section)) parent[Root(parent, i)] = Root(parent, j), ++frame->joints;
+    const bool joint = joint_edges != nullptr ? (*joint_edges)[e.idx()] : (point[i] - point[j]).norm() < SectionDepth(a.section);
+    if (joint) parent[Root(parent, i)] = Root(parent, j), ++frame->joints;
   }
   frame->node_of.assign(n, -1);
   for (int v = 0; v < n; ++v) {
@@ -177,9 +178,9 @@ void StiffnessTerms(const GridFrame& frame, const FrameResult& r,
 
 Status EvaluateGridCompliance(const PolyMesh& mesh, const std::vector<Restraints>& vertex_restraints,
                               const AnalysisOptions& a, bool with_gradient, GridCompliance* out,
-                              CholmodSolver* reuse) {
+                              CholmodSolver* reuse, const std::vector<bool>* joint_edges) {
   out->frame = GridFrame();
-  BuildGridFrame(mesh, vertex_restraints, a, &out->frame);
+  BuildGridFrame(mesh, vertex_restraints, a, &out->frame, joint_edges);
   PQ_RETURN_IF_ERROR(SolveFrame(out->frame.model, &out->result, reuse));
   out->compliance = out->result.compliance;
   out->gradient.clear();

@@ -54,8 +54,11 @@ double SectionDepth(const SectionOptions& s);
 std::vector<Restraints> VertexRestraints(const ExtractedMesh& mesh, const SurfaceModel& surface,
                                          const VertexConditions& supports);
 
+// joint_edges (per mesh edge, optional): which edges are joints; without it, those shorter than
+// the section's depth (stiffen keeps its start's choice, so that its objective stays smooth
+// while a member's length crosses the depth on the way).
 void BuildGridFrame(const PolyMesh& mesh, const std::vector<Restraints>& vertex_restraints, const AnalysisOptions& a,
-                    GridFrame* frame);
+                    GridFrame* frame, const std::vector<bool>* joint_edges = nullptr);
 
 struct GridCompliance {
   GridFrame frame;
@@ -68,6 +71,6 @@ struct GridCompliance {
 // reuse: see SolveFrame.
 Status EvaluateGridCompliance(const PolyMesh& mesh, const std::vector<Restraints>& vertex_restraints,
                               const AnalysisOptions& a, bool with_gradient, GridCompliance* out,
-                              CholmodSolver* reuse = nullptr);
+                              CholmodSolver* reuse = nullptr, const std::vector<bool>* joint_edges = nullptr);
 
 }  // namespace pqlayout

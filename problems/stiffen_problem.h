@@ -39,6 +39,26 @@ void SetUpStiffenProblem(const ClosestPointQuery& query, const ExtractedMesh& me
                          StiffenProblem* P, std::vector<Eigen::Vector3d>* q);
 
 std::vector<Eigen::Vector3d> World(const StiffenProblem& P, const std::vector<Eigen::Vector3d>& q);
+
+// The optimiser's variables: per free (not held) vertex three angles z, q = centre + radius ∘ sin z,
+// so that every z lies in the box (the tolerance holds at every iterate, without bounds).
+class BoxVariables {
+ public:
+  explicit BoxVariables(const StiffenProblem& P);
+  int size() const { return 3 * static_cast<int>(free_.size()); }
+  const std::vector<int>& free() const { return free_; }
+  int FreeIndex(int v) const { return index_[v]; }  // −1 for a held vertex
+  std::vector<Eigen::Vector3d> Local(const double* z) const;          // q of every vertex (held: 0)
+  std::vector<double> Parameters(const std::vector<Eigen::Vector3d>& q) const;  // z of q
+  // ∂x_v/∂z_(k, c) for the free vertex v = free()[k].
+  Eigen::Vector3d Derivative(int k, int c, const double* z) const;
+  double Radius(int v, int c) const { return 0.5 * (P_.upper[v][c] - P_.lower[v][c]); }
+  double Centre(int v, int c) const { return 0.5 * (P_.lower[v][c] + P_.upper[v][c]); }
+
+ private:
+  const StiffenProblem& P_;
+  std::vector<int> free_, index_;
+};
 void SetPoints(const std::vector<Eigen::Vector3d>& x, PolyMesh* mesh);
 double MaxPlanarity(const StiffenProblem& P, const std::vector<Eigen::Vector3d>& x);
 

@@ -12,7 +12,9 @@
 #include "problems/residuals/fairness_change_residual.h"
 #include "problems/residuals/joint_length_residual.h"
 #include "problems/residuals/planarity_budget_residual.h"
-#include "problems/residuals/planarity_lagrangian_residual.h"
+#include "problems/residuals/signed_planarity_residual.h"
+#include "problems/stiffen_manifold.h"
+#include "problems/stiffen_problem.h"
 #include "solver/framed_point_cost.h"
 #include "tests/gradient_check.h"
 #include "tests/test_meshes.h"
@@ -188,9 +190,7 @@ TEST(ComplianceGradient, ClosedFormMemberEnergyEqualsTheElementStiffness) {
 TEST(StiffenResiduals, JacobiansMatchFiniteDifferences) {
   using testing::ExpectJacobiansMatchFiniteDifferences;
   const std::vector<double> a{0.1, 0.2, 0.05}, b{1.1, 0.1, 0.3}, c{1.2, 1.05, -0.1}, d{0.05, 0.9, 0.2};
-  const double lambda = 0.3, rho = 1e4;
-  ExpectJacobiansMatchFiniteDifferences("planarity (Lagrangian)", PlanarityLagrangianResidual::Create(&lambda, &rho, 1e-3),
-                                        {a, b, c, d});
+  ExpectJacobiansMatchFiniteDifferences("planarity (signed)", SignedPlanarityResidual::Create(), {a, b, c, d});
   const std::vector<double> plane{0.1, 0.2, 0.97467943, 0.3};
   ExpectJacobiansMatchFiniteDifferences("planarity (budget)", PlanarityBudgetResidual::Create(1e6, 1.4, 1e-4), {plane, b});
   ExpectJacobiansMatchFiniteDifferences("fairness change",
@@ -204,16 +204,125 @@ TEST(StiffenResiduals, JacobiansMatchFiniteDifferences) {
       "framed point", new FramedPointCost(PlanarityBudgetResidual::Create(1e6, 1.4, 0.0), {nullptr, &frame}), {plane, b});
 }
 
-// The Lagrangian term is exactly (1/2ρ) max(0, λ + ρ g)² (up to −λ²/2ρ) with g = δ − δ_allowed.
-TEST(StiffenResiduals, LagrangianTermIsThePowellHestenesRockafellarPenalty) {
-  const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0.02), c(1, 1, 0), d(0, 1, 0.02);
-  const double delta = QuadPlanarityDelta(a, b, c, d), lambda = 2.0, rho = 1e4, allowed = 1e-3;
-  const PlanarityLagrangianResidual term(&lambda, &rho, allowed);
-  double r = 0.0;
-  term(a.data(), b.data(), c.data(), d.data(), &r);
-  const double g = delta - allowed;
-  EXPECT_NEAR(0.5 * r * r, std::pow(std::max(0.0, lambda + rho * g), 2) / (2 * rho), 1e-12);
-  EXPECT_GT(delta, 0.01);
+// |δ_s| is the SPEC planarity δ, and δ_s changes sign when b's diagonal crosses a's.
+TEST(StiffenResiduals, SignedPlanarityIsThePlanarityWithASign) {
+  const auto signed_delta = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                               const Eigen::Vector3d& d) {
+    double r = 0.0;
+    SignedPlanarityResidual()(a.data(), b.data(), c.data(), d.data(), &r);
+    return r;
+  };
+  const Eigen::Vector3d a(0, 0, 0), c(1, 1, 0), d(0, 1, 0.02);
+  for (const double z : {0.05, 0.02, -0.03}) {
+    const Eigen::Vector3d b(1, 0, z);
+    EXPECT_NEAR(std::abs(signed_delta(a, b, c, d)), QuadPlanarityDelta(a, b, c, d), 1e-15) << z;
+  }
+  EXPECT_LT(signed_delta(a, Eigen::Vector3d(1, 0, 0.05), c, d) * signed_delta(a, Eigen::Vector3d(1, 0, -0.03), c, d), 0.0);
+}
+
+// The planarity manifold on a 4 × 4 grid over a 0.3 m dome, with a tight δ_allowed so that
+// most faces are at their limit.
+struct ManifoldFixture {
+  ManifoldFixture() : roof(0.3), query(roof.reference) {
+    BuildGridFrame(roof.grid.mesh, roof.restraints, AnalysisOptions(), &frame);
+    StiffenOptions options;
+    options.tolerance = 0.1;
+    SetUpStiffenProblem(query, roof.grid, frame, AnalysisOptions().section, options, 1.0, &P, &q);
+  }
+  ShallowRoof roof;
+  ClosestPointQuery query;
+  GridFrame frame;
+  StiffenProblem P;
+  std::vector<Eigen::Vector3d> q;
+};
+
+// ∂x/∂z (BoxVariables::Derivative) against central differences of x(z) = f + R(centre + radius ∘ sin z).
+TEST(StiffenManifold, BoxVariablesDerivativeMatchesFiniteDifferences) {
+  ManifoldFixture m;
+  const BoxVariables box(m.P);
+  ASSERT_EQ(box.size(), 27);  // the 3 × 3 interior vertices
+  std::vector<double> z = box.Parameters(m.q);
+  for (size_t i = 0; i < z.size(); ++i) z[i] += 0.3 * std::sin(1.7 * i);
+  for (int i = 0; i < box.size(); ++i) {
+    std::vector<double> plus = z, minus = z;
+    plus[i] += 1e-6, minus[i] -= 1e-6;
+    const int v = box.free()[i / 3];
+    const Eigen::Vector3d fd = (World(m.P, box.Local(plus.data()))[v] - World(m.P, box.Local(minus.data()))[v]) / 2e-6;
+    EXPECT_LT((fd - box.Derivative(i / 3, i % 3, z.data())).norm(), 1e-8) << i;
+  }
+}
+
+// Retract brings a random point of the boxes back within δ_allowed (+5 %); steps along the
+// projected direction keep the active constraints to first order, unprojected ones do not;
+// the projected gradient is a descent direction no longer than the gradient.
+TEST(StiffenManifold, RetractionAndProjection) {
+  ManifoldFixture m;
+  const BoxVariables box(m.P);
+  std::vector<double> z = box.Parameters(m.q);
+  const double allowed = 0.5 * MaxPlanarity(m.P, World(m.P, box.Local(z.data())));
+  const PlanarityManifold manifold(m.P, box, allowed);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double& v : z) v += 0.2 * u(rng);
+  ASSERT_GT(MaxPlanarity(m.P, World(m.P, box.Local(z.data()))), 1.5 * allowed) << "the start must violate";
+  ASSERT_TRUE(manifold.Retract(z.data()));
+  EXPECT_LE(MaxPlanarity(m.P, World(m.P, box.Local(z.data()))), 1.05 * allowed);
+
+  const auto deltas = [&](const std::vector<double>& at) {
+    const std::vector<Eigen::Vector3d> x = World(m.P, box.Local(at.data()));
+    std::vector<double> out;
+    for (const auto& s : m.P.sub_quads) out.push_back(QuadPlanarityDelta(x[s[0]], x[s[1]], x[s[2]], x[s[3]]));
+    return out;
+  };
+  const std::vector<double> before = deltas(z);
+  std::vector<double> d(z.size()), moved(z.size()), plain(z.size());
+  for (double& v : d) v = u(rng);
+  const double eps = 1e-6;
+  for (size_t i = 0; i < d.size(); ++i) plain[i] = z[i] + eps * d[i], d[i] *= eps;
+  ASSERT_TRUE(manifold.Plus(z.data(), d.data(), moved.data()));
+  const std::vector<double> projected = deltas(moved), unprojected = deltas(plain);
+  int active = 0;
+  double unprojected_change = 0.0;
+  for (size_t k = 0; k < before.size(); ++k) {
+    if (before[k] < 0.98 * allowed) continue;
+    ++active;
+    EXPECT_LT(std::abs(projected[k] - before[k]), 1e-3 * eps) << "sub-quad " << k;
+    unprojected_change = std::max(unprojected_change, std::abs(unprojected[k] - before[k]));
+  }
+  EXPECT_GE(active, 4);
+  EXPECT_GT(unprojected_change, 1e-3 * eps);
+
+  std::vector<double> g(z.size()), t(z.size());
+  for (double& v : g) v = u(rng);
+  ASSERT_TRUE(manifold.RightMultiplyByPlusJacobian(z.data(), 1, g.data(), t.data()));
+  const Eigen::Map<const Eigen::VectorXd> G(g.data(), g.size()), T(t.data(), t.size());
+  EXPECT_GT(T.dot(G), 0.0);
+  EXPECT_LE(T.norm(), G.norm() * (1 + 1e-12));
+}
+
+// Keeping the start's joints (grid_frame.h) gives the same frame and compliance bit for bit.
+TEST(ComplianceGradient, KeptJointsGiveTheSameFrame) {
+  PolyMesh mesh = QuadGrid(4, 1.0, 0.3, 0.05, 7);
+  const VertexHandle v(6), w(7);
+  mesh.set_point(w, mesh.point(v) + OpenMesh::Vec3d(0.02, 0.01, 0.0));  // edge 6–7 shorter than the section depth
+  const auto r = MixedSupports(mesh, 4.0);
+  GridCompliance fresh, kept;
+  ASSERT_TRUE(EvaluateGridCompliance(mesh, r, AnalysisOptions(), true, &fresh).ok());
+  ASSERT_EQ(fresh.frame.joints, 1);
+  std::vector<bool> joints;
+  for (const auto e : mesh.edges()) {
+    const auto he = mesh.halfedge_handle(e, 0);
+    joints.push_back(fresh.frame.node_of[mesh.from_vertex_handle(he).idx()] == fresh.frame.node_of[mesh.to_vertex_handle(he).idx()]);
+  }
+  ASSERT_TRUE(EvaluateGridCompliance(mesh, r, AnalysisOptions(), true, &kept, nullptr, &joints).ok());
+  EXPECT_EQ(kept.compliance, fresh.compliance);
+  EXPECT_EQ(kept.frame.joints, 1);
+  // Forced: no joints at all is a different frame (one member more).
+  const std::vector<bool> none(joints.size(), false);
+  GridCompliance forced;
+  ASSERT_TRUE(EvaluateGridCompliance(mesh, r, AnalysisOptions(), false, &forced, nullptr, &none).ok());
+  EXPECT_EQ(forced.frame.joints, 0);
+  EXPECT_EQ(forced.frame.model.members.size(), kept.frame.model.members.size() + 1);
 }
 
 }  // namespace
