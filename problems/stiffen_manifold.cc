@@ -18,10 +18,11 @@ constexpr double kActiveBand = 0.02;        // δ ≥ (1 − band) δ_allowed co
 constexpr double kRetractTolerance = 0.05;  // a retraction is done at δ ≤ (1 + this) δ_allowed (< target)
 constexpr double kRetractAim = 0.01;        // … and aims at (1 − this) δ_allowed
 constexpr int kRetractions = 20;            // Gauss–Newton steps at most
-constexpr double kRegularisation = 1e-10;   // × mean diagonal of J Jᵀ, for the projection
-// × mean diagonal of J Jᵀ, for the retraction's steps: the sub-quads of an n-gon (n > 4) are
-// nearly dependent (n − 3 conditions, n(n−1)(n−2)(n−3)/24 sub-quads), and undamped their
-// Gram matrix turns a violation of 1e-3 into a step of decimetres.
+constexpr double kRegularisation = 1e-10;   // × the diagonal of J Jᵀ, for the projection
+// × the diagonal of J Jᵀ (Marquardt's scaling, so that a small face is not damped more than
+// a large one), for the retraction's steps: the sub-quads of an n-gon (n > 4) are nearly
+// dependent (n − 3 conditions, n(n−1)(n−2)(n−3)/24 sub-quads), and undamped their Gram
+// matrix turns a violation of 1e-3 into a step of decimetres.
 constexpr double kDamping = 1e-3;
 constexpr size_t kCache = 4;                // Ceres' line search returns to its base point
 
@@ -85,8 +86,8 @@ std::unique_ptr<PlanarityManifold::Linearisation> PlanarityManifold::Linearise(
   if (rows.empty()) return A;
   Eigen::SparseMatrix<double> gram = A->J * A->J.transpose();
   gram = 0.5 * (gram + Eigen::SparseMatrix<double>(gram.transpose()));  // symmetric to the bit
-  const double epsilon = regularisation * gram.diagonal().mean() + 1e-300;
-  for (int i = 0; i < gram.rows(); ++i) gram.coeffRef(i, i) += epsilon;
+  const double floor = 1e-12 * gram.diagonal().mean() + 1e-300;  // a row whose coordinates are all frozen
+  for (int i = 0; i < gram.rows(); ++i) gram.coeffRef(i, i) += regularisation * gram.coeffRef(i, i) + floor;
   A->gram = std::make_unique<CholmodSolver>();
   if (!A->gram->Factorize(gram).ok()) A->gram.reset();
   return A;

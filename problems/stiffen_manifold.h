@@ -56,7 +56,7 @@ class PlanarityManifold final : public ceres::Manifold {
   struct Linearisation;
   std::vector<double> Values(const double* z) const;  // δ_s of every constraint
   // J of the given rows at the points x (row r: sign(δ_s) ∂δ_s/∂x · dx(k, c) per free coordinate
-  // (k, c) not frozen) and its factorised Gram matrix J Jᵀ + regularisation × mean diagonal.
+  // (k, c) not frozen) and its factorised Gram matrix J Jᵀ + regularisation × its diagonal.
   std::unique_ptr<Linearisation> Linearise(const std::vector<Eigen::Vector3d>& x, const std::vector<int>& rows,
                                            const std::vector<double>& values,
                                            const std::function<Eigen::Vector3d(int, int)>& dx,

@@ -64,7 +64,7 @@ double MaxPlanarity(const StiffenProblem& P, const std::vector<Eigen::Vector3d>&
 
 // Moves q as little as it can (anchor) until every face's δ ≤ target_delta, inside the boxes
 // (Ceres: planarity within a shrinking budget, weight raised until met): the last resort when
-// the augmented Lagrangian ends above the target.
+// the manifold optimiser ends above the target.
 Status RestorePlanarity(const StiffenProblem& P, double target_delta, std::vector<Eigen::Vector3d>* q);
 
 }  // namespace pqlayout
