@@ -1,8 +1,10 @@
 // The 3D frame solver (assembly + CHOLMOD) on a square grid shell of about 5,000 nodes
-// (issue 7: ≤ 1 s), and on larger grids for the growth.
+// (issue 7: ≤ 1 s), and on larger grids for the growth; the linear buckling solve (issue 18:
+// ≤ 1 s at ~900 nodes, ≤ 10 s at ~5,000), three factors as analyze's default.
 #include <benchmark/benchmark.h>
 
 #include "solver/frame_analysis.h"
+#include "solver/frame_buckling.h"
 
 namespace pqlayout {
 namespace {
@@ -42,6 +44,19 @@ void BM_SolveFrame(benchmark::State& state) {
   state.counters["members"] = m.members.size();
 }
 BENCHMARK(BM_SolveFrame)->Arg(71)->Arg(141)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_SolveBuckling(benchmark::State& state) {
+  const FrameModel m = GridShell(static_cast<int>(state.range(0)));
+  FrameResult r;
+  if (!SolveFrame(m, &r).ok()) state.SkipWithError("frame solve failed");
+  BucklingResult b;
+  for (auto _ : state)
+    if (!SolveBuckling(m, r, 3, &b).ok() || !b.buckles) state.SkipWithError("buckling solve failed");
+  state.counters["nodes"] = m.nodes.size();
+  state.counters["factor"] = b.factors.empty() ? 0.0 : b.factors.front();
+  state.counters["solves"] = b.operations;
+}
+BENCHMARK(BM_SolveBuckling)->Arg(31)->Arg(71)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace pqlayout

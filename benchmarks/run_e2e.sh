@@ -14,14 +14,8 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 csv=${2:-benchmarks/results.csv}
 edges=${PQ_E2E_EDGES:-"1.5 0.8 0.5 0.3 0.17"}
-pqlayout="$build/cli/pqlayout"
-[[ -x "$pqlayout" ]] || { echo "run_e2e: $pqlayout not found; build first (bash scripts/build.sh)" >&2; exit 2; }
-if ! command -v jq >/dev/null; then
-  echo "run_e2e: installing jq" >&2
-  apt-get install -y -qq jq >/dev/null
-fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+name=run_e2e
+source benchmarks/common.sh
 rows="$work/rows.csv"
 : > "$rows"
 for edge in $edges; do

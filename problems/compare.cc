@@ -17,7 +17,8 @@
 namespace pqlayout {
 namespace {
 
-// The rows of the table: (stage, metric, label). Lower is better for all but quad fraction.
+// The rows of the table: (stage, metric, label). Lower is better for all but quad fraction
+// and the two rows that say so.
 struct Row {
   const char* stage;
   const char* metric;
@@ -34,6 +35,9 @@ const Row kRows[] = {
     {"analyze", "compliance_node_max", "nodal compliance, max [J]"},
     {"analyze", "compliance_per_tonne", "compliance per tonne of steel [J/t]"},
     {"analyze", "max_displacement", "max displacement [m]"},
+    {"analyze", "buckling_factor", "buckling load factor λ₁ (higher is better)"},
+    {"analyze", "utilisation_max", "member utilisation η, max"},
+    {"analyze", "span_over_deflection", "span / max deflection (higher is better)"},
     {"analyze", "steel_mass", "steel mass [kg]"},
     {"analyze", "n_nodes", "nodes"},
     {"analyze", "n_members", "members"},

@@ -261,10 +261,12 @@ KeyTable::KeyTable(Config* c) {
   Bool("analysis.export_calculix", &a.export_calculix, "also write analysis/model.inp for CalculiX");
   Choice("analysis.calculix_element", &a.calculix_element, {"u1", "b32r"},
          "CalculiX beam: u1 = ccx's 2-node beam with the model's Euler–Bernoulli stiffness; b32r = 3-node beam ccx expands to bricks of the true section");
+  Integer("analysis.buckling_modes", &a.buckling_modes, 0, 20, "linear buckling load factors (and mode shapes) to find; 0: none");
   Integer("analysis.calculix_subdivisions", &a.calculix_subdivisions, 1, 64, "CalculiX elements per member (b32r converges as this grows)");
   Number("analysis.material.youngs_modulus", &a.material.youngs_modulus, AtLeast(1e6, kMaxModulus), "E, Pa");
   Number("analysis.material.poisson_ratio", &a.material.poisson_ratio, Range{-1.0, 0.5, true, true}, "ν; G = E / (2(1+ν))");
   Number("analysis.material.density", &a.material.density, NonNegative(1e6), "ρ, kg/m³");
+  Number("analysis.material.yield_strength", &a.material.yield_strength, AtLeast(1e6, kMaxModulus), "f_y, Pa, for the member utilisation η (S355: 355e6)");
   Choice("analysis.section.shape", &a.section.shape, {"circular_hollow", "rectangular_hollow"}, "member cross-section");
   Number("analysis.section.diameter", &a.section.diameter, AtLeast(kMinSection, 100.0), "circular hollow: outside diameter D, m");
   Number("analysis.section.thickness", &a.section.thickness, AtLeast(kMinSection, 100.0), "wall thickness t, m");

@@ -143,6 +143,7 @@ struct MaterialOptions {
   double youngs_modulus = 210e9;  // E, Pa (steel)
   double poisson_ratio = 0.3;     // ν; G = E / (2(1+ν))
   double density = 7850.0;        // ρ, kg/m³
+  double yield_strength = 355e6;  // f_y, Pa (S355): member utilisation (solver/member_checks.h)
 };
 
 struct SectionOptions {
@@ -159,6 +160,7 @@ struct AnalysisOptions {
   bool export_calculix = false;  // also write analysis/model.inp for CalculiX
   std::string calculix_element = "u1";  // u1 (same Euler–Bernoulli stiffness) | b32r (expanded to bricks)
   int calculix_subdivisions = 1;        // CalculiX elements per member
+  int buckling_modes = 3;               // linear buckling factors to find (0: no buckling analysis)
   MaterialOptions material;
   SectionOptions section;
 };

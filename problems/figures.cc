@@ -395,6 +395,7 @@ Rgb PlanarityScale::Colour(double delta) const {
 namespace {
 
 const Rgb kMemberInk{0x28, 0x28, 0x28};  // grid-shell members
+const Rgb kFaintFace{0xe6, 0xe6, 0xe6};  // faces behind coloured members
 
 std::vector<Eigen::Vector3d> FacePoints(const PolyMesh& mesh, FaceHandle f) {
   std::vector<Eigen::Vector3d> points;
@@ -515,6 +516,30 @@ Status WriteOffsetFigure(const SurfaceModel& surface, const PolyMesh& mesh, cons
   const double extent = 1000.0 * (tolerance > 0.0 ? tolerance : 1.0);
   return WriteFaceMeanFigure(surface, mesh, millimetres, ColourScale{BlueWhiteRed, -extent, extent},
                              "normal offset [mm]", title, path, options);
+}
+
+Status WriteBucklingFigure(const SurfaceModel& surface, const PolyMesh& mesh, const std::vector<double>& amplitude,
+                           const std::string& title, const std::string& path, const FigureOptions& options) {
+  PQ_RETURN_IF_ERROR(CheckFinite(amplitude, static_cast<int>(mesh.n_vertices()), "buckling mode", "vertex").WithContext(path));
+  return WriteFaceMeanFigure(surface, mesh, amplitude, ColourScale{Viridis, 0.0, 1.0}, "buckling mode |u| (max 1)",
+                             title, path, options);
+}
+
+Status WriteUtilisationFigure(const SurfaceModel& surface, const PolyMesh& mesh,
+                              const std::vector<std::pair<int, int>>& members, const std::vector<double>& eta,
+                              const std::string& title, const std::string& path, const FigureOptions& options) {
+  PQ_RETURN_IF_ERROR(CheckFinite(eta, static_cast<int>(members.size()), "utilisation", "member").WithContext(path));
+  const ColourScale scale{Viridis, 0.0, std::max(1.0, *std::max_element(eta.begin(), eta.end()))};
+  SvgCanvas canvas(TopViewBounds(surface, mesh), options.width_px, title);
+  for (const auto f : mesh.faces()) canvas.Polygon(TopView(FacePoints(mesh, f)), kFaintFace);
+  const double width = std::max(1.5, 2.5 * MemberStroke(mesh, canvas).width);
+  for (size_t e = 0; e < members.size(); ++e) {
+    const Vector2d a = ToEigen(mesh.point(VertexHandle(members[e].first))).head<2>();
+    const Vector2d b = ToEigen(mesh.point(VertexHandle(members[e].second))).head<2>();
+    canvas.Polylines({{a, b}}, Stroke{scale.map(std::clamp(scale.T(eta[e]), 0.0, 1.0)), width, 1.0}, false);
+  }
+  DrawFrame(surface, scale, "utilisation η", &canvas);
+  return canvas.Write(path);
 }
 
 Status WritePlanarityFigure(const SurfaceModel& surface, const PolyMesh& mesh, double target_delta,

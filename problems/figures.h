@@ -99,6 +99,18 @@ Status WriteOffsetFigure(const SurfaceModel& surface, const PolyMesh& mesh, cons
                          double tolerance, const std::string& title, const std::string& path,
                          const FigureOptions& options = {});
 
+// The first buckling mode (analyze): top view, each face filled with the mean of its
+// vertices' mode amplitude |u| (the mode normalised to max 1), viridis 0..1.
+Status WriteBucklingFigure(const SurfaceModel& surface, const PolyMesh& mesh, const std::vector<double>& amplitude,
+                           const std::string& title, const std::string& path, const FigureOptions& options = {});
+
+// Member utilisation η (analyze): top view, faces light grey, every member (mesh vertex
+// pair) drawn in its colour on viridis 0..max(1, η max), so that members over 1 are the
+// brightest. InvalidInput unless eta has one finite value per member.
+Status WriteUtilisationFigure(const SurfaceModel& surface, const PolyMesh& mesh,
+                              const std::vector<std::pair<int, int>>& members, const std::vector<double>& eta,
+                              const std::string& title, const std::string& path, const FigureOptions& options = {});
+
 // Line width (px of a 1000 px drawing) of mesh edges (grid-shell members) whose mean length
 // on the drawing is `mean_edge_px` (px of a 1000 px drawing): 5 % of it, between 0.3 and
 // 1.2 px, and 0 (edges not drawn, faces only) below 4 px, where lines would cover the faces;

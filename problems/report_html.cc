@@ -61,6 +61,7 @@ struct FigureEntry {
   const char* file;
   const char* stage;
   const char* caption;
+  bool optional = false;  // not every run writes it (buckling.svg: only when the frame buckles)
 };
 const FigureEntry kFigures[] = {
     {"displacement.svg", "membrane", "Membrane displacement v_z under dead load (paper Fig. 3)."},
@@ -81,6 +82,13 @@ const FigureEntry kFigures[] = {
      "How stiffen reshaped the planar grid: normal offset of each face's vertices from the "
      "planarised mesh, blue down, red up, the colour scale spanning ± stiffen.tolerance."},
     {"compliance.svg", "analyze", "Nodal compliance of the grid shell as a steel frame (paper Fig. 9, 14)."},
+    {"utilisation.svg", "analyze",
+     "Member utilisation η = |N|/(A f_y) + bending/(W_el f_y) at the worse end of each member (elastic check); "
+     "members over 1 are the brightest."},
+    {"buckling.svg", "analyze",
+     "First linear buckling mode of the frame under the analysed load (|u| normalised to 1), its load factor λ "
+     "in the title.",
+     true},
 };
 
 const char* kStyle = R"(body{font-family:sans-serif;max-width:1240px;margin:1.5em auto;padding:0 1em;color:#222}
@@ -255,6 +263,9 @@ const KeyResult kKeyResults[] = {
     {"analyze", "compliance_total", "compliance total [J]"},
     {"analyze", "max_displacement", "frame max displacement [m]"},
     {"analyze", "steel_mass", "steel mass [kg]"},
+    {"analyze", "buckling_factor", "buckling load factor λ₁"},
+    {"analyze", "utilisation_max", "member utilisation η, max"},
+    {"analyze", "span_over_deflection", "span / max deflection"},
 };
 
 std::string KeyResults(const nlohmann::json& report) {
@@ -320,6 +331,7 @@ Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out) {
   int index = 0;
   for (const auto& figure : kFigures) {
     if (!Completed(report, figure.stage)) continue;
+    if (figure.optional && !std::filesystem::exists(out->Path(std::string("figures/") + figure.file))) continue;
     page << FigureHtml(out->Path(std::string("figures/") + figure.file), figure.file, figure.caption, index++);
   }
   page << "</div>\n<h2>Metrics per stage</h2>\n" << MetricsTables(report)

@@ -1,6 +1,7 @@
 // Stage `analyze` (paper §4, SPEC §7): the final grid shell (stiffened, or planarised when
 // stiffen is off) as a rigid-jointed steel frame: problems/grid_frame.h builds the model
-// (the same one `stiffen` optimises), solver/frame_analysis.h solves it. With analysis.export_calculix the same model is also
+// (the same one `stiffen` optimises), solver/frame_analysis.h solves it, and
+// problems/structural_checks.h adds buckling, utilisation and deflection. With analysis.export_calculix the same model is also
 // written as a CalculiX deck, analysis/model.inp (solver/calculix_export.h).
 #include <glog/logging.h>
 
@@ -12,6 +13,7 @@
 #include "solver/calculix_export.h"
 #include "solver/frame_analysis.h"
 #include "problems/grid_frame.h"
+#include "problems/structural_checks.h"
 
 namespace pqlayout {
 namespace {
@@ -49,7 +51,7 @@ VertexResults ResultsPerVertex(const GridFrame& frame, const FrameResult& r) {
 }
 
 Status WriteAnalysisTables(const PipelineState& state, const GridFrame& frame, const FrameResult& r,
-                           const VertexResults& per_vertex, OutputFiles* out) {
+                           const VertexResults& per_vertex, const std::vector<double>& utilisation, OutputFiles* out) {
   const PolyMesh& mesh = state.shell.mesh;
   const size_t n = frame.node_of.size(), m = frame.model.members.size();
   std::vector<double> x(n), y(n), z(n), load(n), ux(n), uy(n), uz(n), c(n);
@@ -73,8 +75,9 @@ Status WriteAnalysisTables(const PipelineState& state, const GridFrame& frame, c
     ma_y[e] = f[4], ma_z[e] = f[5], mb_y[e] = f[10], mb_z[e] = f[11];
   }
   return WriteCsvTable({"id", "node_a", "node_b", "length", "axial_force", "torsion", "moment_y_a", "moment_z_a",
-                        "moment_y_b", "moment_z_b"},
-                       {&a, &b, &length, &axial, &torsion, &ma_y, &ma_z, &mb_y, &mb_z}, out->Path("analysis/members.csv"));
+                        "moment_y_b", "moment_z_b", "utilisation"},
+                       {&a, &b, &length, &axial, &torsion, &ma_y, &ma_z, &mb_y, &mb_z, &utilisation},
+                       out->Path("analysis/members.csv"));
 }
 
 }  // namespace
@@ -123,7 +126,12 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
               << " frame nodes";
   LOG(INFO) << "analyze: steel " << frame.steel_mass / 1000.0 << " t; compliance " << r.compliance << " J (node mean "
             << mean << ", max " << max_c << "), max |u| " << max_u * 1000.0 << " mm";
-  PQ_RETURN_IF_ERROR(WriteAnalysisTables(*state, frame, r, per_vertex, out));
+  StructuralChecks checks;
+  PQ_RETURN_IF_ERROR(RunStructuralChecks(frame, r, state->config.analysis, &checks));
+  metrics->update(checks.ToJson(frame));
+  PQ_RETURN_IF_ERROR(WriteAnalysisTables(*state, frame, r, per_vertex, checks.utilisation, out));
+  PQ_RETURN_IF_ERROR(
+      WriteStructuralChecks(*state->surface, state->shell.mesh, frame, checks, state->config.guidance.source, out));
   if (state->config.analysis.export_calculix) PQ_RETURN_IF_ERROR(WriteCalculixModel(model, state->config.analysis, out));
   return WriteComplianceFigure(*state->surface, state->shell.mesh, per_vertex.compliance, 0.0,
                                "Nodal compliance of the grid shell (" + state->config.guidance.source + " guidance)",

@@ -6,6 +6,7 @@ packages=(
   libceres-dev libeigen3-dev libsuitesparse-dev libopenmesh-dev libgoogle-glog-dev libgflags-dev
   libyaml-cpp-dev libcgal-dev libgmp-dev libmpfr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libspectra-dev         # Lanczos eigensolver on Eigen: the buckling factors (solver/frame_buckling.h)
   calculix-ccx           # ccx: the CalculiX cross-check in tests/calculix_test.cc (skipped without it)
   chromium               # headless browser for the report check (tests/report_check_test, scripts/check_report.sh)
   libopenblas-dev        # the one BLAS/LAPACK pqlayout links (CMake BLA_VENDOR=OpenBLAS); see solver/numerics.h

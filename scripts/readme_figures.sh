@@ -23,6 +23,7 @@ for f in displacement guidance levelsets; do png out/readme/figures/$f.svg 700 d
 png out/readme_curvature/figures/guidance.svg 700 docs/figures/guidance_curvature.png
 png out/readme_curvature/figures/levelsets.svg 700 docs/figures/levelsets_curvature.png
 for f in planarity_initial planarity shell_3d; do png out/readme/figures/$f.svg 600 docs/figures/$f.png; done
+for f in buckling utilisation; do png out/readme/figures/$f.svg 600 docs/figures/${f}_strain.png; done
 SCREENSHOT_SCALE=0.5 bash scripts/check_report.sh out/readme/report.html docs/figures/report_screenshot.png
 pngquant --quality=60-85 --speed 1 -f -o docs/figures/report_screenshot.png docs/figures/report_screenshot.png
 build/cli/pqlayout compare examples/great_court.yaml --out out/readme_compare -q --set stiffen.tolerance=0

@@ -66,6 +66,34 @@ Matrix12<T> LocalBeamStiffness(const T& L, const FrameSection& s, const FrameMat
   return k;
 }
 
+// The consistent geometric stiffness of one member under axial force N (tension positive),
+// local axes, DOFs [a(6), b(6)] (McGuire, Gallagher & Ziemian, Matrix Structural Analysis,
+// 2nd ed., eq. 9.19, without the end-moment terms): k_G = N/L ×
+//   axial      [1, −1; −1, 1]                                        (u: 0, 6)
+//   x–y plane  [6/5, L/10, −6/5, L/10; ·, 2L²/15, −L/10, −L²/30; ·, ·, 6/5, −L/10; ·, ·, ·, 2L²/15]
+//              over (v_a, θz_a, v_b, θz_b); x–z plane the same over (w, θ_y) with the signs of
+//              the L/10 terms flipped (θ_y = −dw/dx, as in LocalBeamStiffness)
+//   torsion    I_p/A [1, −1; −1, 1], I_p = I_y + I_z                   (θ_x: 3, 9)
+// The buckling factors λ solve (K + λ K_G(N)) φ = 0 (solver/frame_buckling.h).
+inline Matrix12<double> LocalGeometricStiffness(double L, double N, const FrameSection& s) {
+  Matrix12<double> k = Matrix12<double>::Zero();
+  const double c = N / L, ip = (s.inertia_y + s.inertia_z) / s.area;
+  k(0, 0) = k(6, 6) = c, k(0, 6) = k(6, 0) = -c;
+  k(3, 3) = k(9, 9) = c * ip, k(3, 9) = k(9, 3) = -c * ip;
+  const double a = 1.2 * c, b = c * L / 10.0, d = c * 2.0 * L * L / 15.0, e = -c * L * L / 30.0;
+  // x–y plane: v (1, 7), θ_z (5, 11).
+  k(1, 1) = k(7, 7) = a, k(1, 7) = k(7, 1) = -a;
+  k(1, 5) = k(5, 1) = k(1, 11) = k(11, 1) = b;
+  k(7, 5) = k(5, 7) = k(7, 11) = k(11, 7) = -b;
+  k(5, 5) = k(11, 11) = d, k(5, 11) = k(11, 5) = e;
+  // x–z plane: w (2, 8), θ_y (4, 10).
+  k(2, 2) = k(8, 8) = a, k(2, 8) = k(8, 2) = -a;
+  k(2, 4) = k(4, 2) = k(2, 10) = k(10, 2) = -b;
+  k(8, 4) = k(4, 8) = k(8, 10) = k(10, 8) = b;
+  k(4, 4) = k(10, 10) = d, k(4, 10) = k(10, 4) = e;
+  return k;
+}
+
 // Rows: local x, y, z axes in world coordinates. `up` need not be unit length.
 template <typename T>
 Eigen::Matrix<T, 3, 3> MemberFrame(const Eigen::Matrix<T, 3, 1>& a, const Eigen::Matrix<T, 3, 1>& b,

@@ -61,37 +61,49 @@ Status CheckModel(const FrameModel& m) {
 
 }  // namespace
 
-Status SolveFrame(const FrameModel& m, FrameResult* r, CholmodSolver* reuse) {
+Status AssembleFrame(const FrameModel& m, FrameSystem* s) {
   PQ_RETURN_IF_ERROR(CheckModel(m));
   const int n = static_cast<int>(m.nodes.size());
-  // Free DOFs numbered consecutively.
-  std::vector<int> index(6 * n, -1);
-  int free = 0;
+  s->index.assign(6 * n, -1);
+  s->free = 0;
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 6; ++d)
-      if (m.restraints.empty() || !m.restraints[i][d]) index[6 * i + d] = free++;
+      if (m.restraints.empty() || !m.restraints[i][d]) s->index[6 * i + d] = s->free++;
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(144 * m.members.size());
-  std::vector<Eigen::Matrix<double, 12, 12>> member_k(m.members.size()), member_t(m.members.size());
+  s->member_k.resize(m.members.size()), s->member_t.resize(m.members.size());
   for (size_t e = 0; e < m.members.size(); ++e) {
     const auto& mb = m.members[e];
     const double L = (m.nodes[mb.b] - m.nodes[mb.a]).norm();
-    member_t[e] = Transformation(MemberFrame<double>(m.nodes[mb.a], m.nodes[mb.b], mb.up));
-    member_k[e] = LocalBeamStiffness<double>(L, m.section, m.material);
-    const Eigen::Matrix<double, 12, 12> K = member_t[e].transpose() * member_k[e] * member_t[e];
+    s->member_t[e] = Transformation(MemberFrame<double>(m.nodes[mb.a], m.nodes[mb.b], mb.up));
+    s->member_k[e] = LocalBeamStiffness<double>(L, m.section, m.material);
+    const Eigen::Matrix<double, 12, 12> K = s->member_t[e].transpose() * s->member_k[e] * s->member_t[e];
     int dofs[12];
     for (int k = 0; k < 6; ++k) dofs[k] = 6 * mb.a + k, dofs[6 + k] = 6 * mb.b + k;
     for (int p = 0; p < 12; ++p)
       for (int q = 0; q < 12; ++q)
-        if (index[dofs[p]] >= 0 && index[dofs[q]] >= 0) triplets.emplace_back(index[dofs[p]], index[dofs[q]], K(p, q));
+        if (s->index[dofs[p]] >= 0 && s->index[dofs[q]] >= 0)
+          triplets.emplace_back(s->index[dofs[p]], s->index[dofs[q]], K(p, q));
   }
+  s->K.resize(s->free, s->free);
+  s->K.setFromTriplets(triplets.begin(), triplets.end());
+  return Status::Ok();
+}
+
+Status SolveFrame(const FrameModel& m, FrameResult* r, CholmodSolver* reuse) {
+  FrameSystem system;
+  PQ_RETURN_IF_ERROR(AssembleFrame(m, &system));
+  const int n = static_cast<int>(m.nodes.size());
+  const std::vector<int>& index = system.index;
+  const int free = system.free;
+  const auto& member_k = system.member_k;
+  const auto& member_t = system.member_t;
+  const Eigen::SparseMatrix<double>& K = system.K;
   Eigen::VectorXd f_full = Eigen::VectorXd::Zero(6 * n);
   for (int i = 0; i < n && !m.loads.empty(); ++i) f_full.segment<6>(6 * i) = m.loads[i];
   Eigen::VectorXd f(free);
   for (int k = 0; k < 6 * n; ++k)
     if (index[k] >= 0) f[index[k]] = f_full[k];
-  Eigen::SparseMatrix<double> K(free, free);
-  K.setFromTriplets(triplets.begin(), triplets.end());
 
   CholmodSolver own;
   CholmodSolver& solver = reuse != nullptr ? *reuse : own;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <Eigen/Geometry>
 
 #include "geometry/status.h"
@@ -51,6 +52,16 @@ struct FrameResult {
 
 // Names a DOF for messages: "u_x", ..., "θ_z".
 const char* DofName(int dof);
+
+// A frame's free DOFs and its stiffness matrix over them (SolveFrame's; the buckling solve's).
+struct FrameSystem {
+  std::vector<int> index;  // per DOF (6 · node + d): its number among the free DOFs, −1 where restrained
+  int free = 0;
+  Eigen::SparseMatrix<double> K;
+  std::vector<Eigen::Matrix<double, 12, 12>> member_k, member_t;  // per member: local stiffness, T (local = T world)
+};
+// Checks the model (InvalidInput naming the member) and assembles K.
+Status AssembleFrame(const FrameModel& model, FrameSystem* system);
 
 class CholmodSolver;
 // reuse (optional): a solver kept across calls; a stiffness matrix with the previous call's

@@ -80,7 +80,15 @@ TEST(Cli, RunWritesReportAndSurface) {
   EXPECT_EQ(html.find("<img"), std::string::npos);
   size_t figures = 0;
   for (size_t at = html.find("<figure data-figure="); at != std::string::npos; at = html.find("<figure data-figure=", at + 1)) ++figures;
-  EXPECT_EQ(figures, 8u);  // displacement, guidance, level sets, 3D view, planarity before/after, offset, compliance
+  // displacement, guidance, level sets, 3D view, planarity before/after, offset, compliance,
+  // utilisation, and the buckling mode when the frame buckles under its load.
+  const bool buckles = report["stages"]["analyze"]["buckling_factor"].is_number();
+  EXPECT_EQ(fs::exists(dir + "/result/figures/buckling.svg"), buckles);
+  EXPECT_EQ(fs::exists(dir + "/result/analysis/buckling_modes.csv"), buckles);
+  EXPECT_EQ(figures, buckles ? 10u : 9u);
+  for (const char* key : {"buckling", "buckling_factors", "utilisation_max", "utilisation_mean", "span_over_deflection",
+                          "deflection_max", "members_over_utilisation"})
+    EXPECT_TRUE(report["stages"]["analyze"].contains(key)) << key;
   EXPECT_EQ(html.find("data-missing"), std::string::npos);
   EXPECT_NE(html.find("alignment_rms_deg"), std::string::npos);
   EXPECT_NE(html.find("max_displacement"), std::string::npos);
