@@ -258,7 +258,7 @@ KeyTable::KeyTable(Config* c) {
   auto& a = c->analysis;
   Number("analysis.panel_load", &a.panel_load, NonNegative(kMaxPressure), "panel dead load, N/m² of face area");
   Number("analysis.gravity", &a.gravity, NonNegative(1e3), "g, m/s²");
-  Bool("analysis.export_calculix", &a.export_calculix, "also write analysis/model.inp for CalculiX");
+  Bool("analysis.export_calculix", &a.export_calculix, "also write analysis/model.inp for CalculiX (and analysis/model_buckle.inp, a *BUCKLE deck, when the frame buckles)");
   Choice("analysis.calculix_element", &a.calculix_element, {"u1", "b32r"},
          "CalculiX beam: u1 = ccx's 2-node beam with the model's Euler–Bernoulli stiffness; b32r = 3-node beam ccx expands to bricks of the true section");
   Integer("analysis.buckling_modes", &a.buckling_modes, 0, 20, "linear buckling load factors (and mode shapes) to find; 0: none");

@@ -1,10 +1,12 @@
 // Stage `analyze` (paper §4, SPEC §7): the final grid shell (stiffened, or planarised when
 // stiffen is off) as a rigid-jointed steel frame: problems/grid_frame.h builds the model
 // (the same one `stiffen` optimises), solver/frame_analysis.h solves it, and
-// problems/structural_checks.h adds buckling, utilisation and deflection. With analysis.export_calculix the same model is also
-// written as a CalculiX deck, analysis/model.inp (solver/calculix_export.h).
+// problems/structural_checks.h adds buckling, utilisation and deflection. With
+// analysis.export_calculix the same model is also written as CalculiX decks,
+// analysis/model.inp and (when it buckles) analysis/model_buckle.inp (solver/calculix_export.h).
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/field_writers.h"
@@ -18,8 +20,10 @@
 namespace pqlayout {
 namespace {
 
-// analysis/model.inp: the frame as a CalculiX deck, element and subdivision from the config.
-Status WriteCalculixModel(const FrameModel& model, const AnalysisOptions& a, OutputFiles* out) {
+// analysis/model.inp: the frame as a CalculiX deck, element and subdivision from the config;
+// with buckling_modes, analysis/model_buckle.inp: a *BUCKLE deck, B32R (ccx has no U1
+// stress stiffness), at least 2 elements per member.
+Status WriteCalculixModel(const FrameModel& model, const AnalysisOptions& a, int buckling_modes, OutputFiles* out) {
   CalculixExportOptions options;
   CalculixElementFromName(a.calculix_element, &options.element);  // the config admits u1 | b32r only
   options.subdivisions = a.calculix_subdivisions;
@@ -32,7 +36,14 @@ Status WriteCalculixModel(const FrameModel& model, const AnalysisOptions& a, Out
   options.title = "pqlayout analyze: planarised grid shell as a rigid-jointed frame";
   std::string deck;
   PQ_RETURN_IF_ERROR(WriteCalculixDeck(model, options, &deck).WithContext("analysis.export_calculix"));
-  return out->WriteText("analysis/model.inp", deck);
+  PQ_RETURN_IF_ERROR(out->WriteText("analysis/model.inp", deck));
+  if (buckling_modes == 0) return Status::Ok();
+  options.element = CalculixElement::kB32R;
+  options.subdivisions = std::max(2, options.subdivisions);
+  options.buckling_modes = buckling_modes;
+  options.title = "pqlayout analyze: linear buckling of the grid shell (compare with report.json buckling_factors)";
+  PQ_RETURN_IF_ERROR(WriteCalculixDeck(model, options, &deck).WithContext("analysis.export_calculix"));
+  return out->WriteText("analysis/model_buckle.inp", deck);
 }
 
 // Per mesh vertex: the displacement of its node and its own nodal compliance f_v · u_v.
@@ -132,7 +143,9 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   PQ_RETURN_IF_ERROR(WriteAnalysisTables(*state, frame, r, per_vertex, checks.utilisation, out));
   PQ_RETURN_IF_ERROR(
       WriteStructuralChecks(*state->surface, state->shell.mesh, frame, checks, state->config.guidance.source, out));
-  if (state->config.analysis.export_calculix) PQ_RETURN_IF_ERROR(WriteCalculixModel(model, state->config.analysis, out));
+  if (state->config.analysis.export_calculix)
+    PQ_RETURN_IF_ERROR(WriteCalculixModel(model, state->config.analysis,
+                                          checks.buckling.buckles ? state->config.analysis.buckling_modes : 0, out));
   return WriteComplianceFigure(*state->surface, state->shell.mesh, per_vertex.compliance, 0.0,
                                "Nodal compliance of the grid shell (" + state->config.guidance.source + " guidance)",
                                out->Path("figures/compliance.svg"));

@@ -31,3 +31,15 @@ awk -v seconds="$(echo "$end - $start" | bc)" '
 ' "$scratch/model.inp" "$scratch/model.dat"
 sed -n '/"analyze": {/,/^ *}/p' "$run/report.json" | grep -E '"(compliance_total|max_displacement)"' |
   sed 's/^ */pqlayout: /; s/,$//'
+# The buckling deck (analysis/model_buckle.inp, written with the other when the frame
+# buckles): ccx's first factors (B32R bricks, a little above the beam model's) and pqlayout's.
+buckle="$run/analysis/model_buckle.inp"
+if [ -f "$buckle" ]; then
+  cp "$buckle" "$scratch/buckle.inp"
+  (cd "$scratch" && OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} ccx -i buckle > ccx_buckle.log 2>&1) ||
+    { tail -20 "$scratch/ccx_buckle.log" >&2; exit 1; }
+  awk '/B U C K L I N G/ { block = 1; next } block && $1 ~ /^[0-9]+$/ && NF == 2 { printf "%s%.6g", (n++ ? ", " : "ccx: buckling factors "), $2 }
+       block && n && NF == 0 { exit } END { print "" }' "$scratch/buckle.dat"
+  sed -n '/"analyze": {/,/^ *}/p' "$run/report.json" | tr -d '\n' | grep -oE '"buckling_factors": \[[^]]*\]' |
+    sed 's/^/pqlayout: /; s/  */ /g'
+fi

@@ -26,6 +26,8 @@ Status CheckInput(const FrameModel& m, const CalculixExportOptions& o) {
   const int n = static_cast<int>(m.nodes.size());
   if (n == 0 || m.members.empty()) return Status::InvalidInput("calculix export: no nodes or no members");
   if (o.subdivisions < 1) return Status::InvalidInput("calculix export: subdivisions must be at least 1");
+  if (o.buckling_modes > 0 && o.element != CalculixElement::kB32R)
+    return Status::InvalidInput("calculix export: a *BUCKLE step needs B32R elements (ccx has no U1 stress stiffness)");
   for (size_t e = 0; e < m.members.size(); ++e) {
     const FrameMember& mb = m.members[e];
     if (mb.a < 0 || mb.b < 0 || mb.a >= n || mb.b >= n || !((m.nodes[mb.a] - m.nodes[mb.b]).norm() > 0.0))
@@ -130,11 +132,17 @@ Status WriteCalculixDeck(const FrameModel& m, const CalculixExportOptions& o, st
       s << i + 1 << "," << d + 1 << "," << last + 1 << "\n";
       d = last + 1;
     }
-  s << "*STEP\n*STATIC\n*CLOAD\n";
+  s << "*STEP\n";
+  if (o.buckling_modes > 0)
+    s << "*BUCKLE\n" << o.buckling_modes << "\n";
+  else
+    s << "*STATIC\n";
+  s << "*CLOAD\n";
   for (int i = 0; i < n && !m.loads.empty(); ++i)
     for (int d = 0; d < 6; ++d)
       if (m.loads[i][d] != 0.0) s << i + 1 << "," << d + 1 << "," << Num(m.loads[i][d]) << "\n";
-  s << "*NODE PRINT, NSET=NMODEL\nU\n*NODE FILE\nU\n*END STEP\n";
+  if (o.buckling_modes == 0) s << "*NODE PRINT, NSET=NMODEL\nU\n";
+  s << "*NODE FILE\nU\n*END STEP\n";
   *deck = s.str();
   return Status::Ok();
 }
@@ -161,6 +169,26 @@ Status ReadCalculixDisplacements(const std::string& dat, std::map<int, Eigen::Ve
     (*u)[node] = v;
   }
   if (u->empty()) return Status::InvalidInput("ccx .dat: empty displacements block");
+  return Status::Ok();
+}
+
+Status ReadCalculixBucklingFactors(const std::string& dat, std::vector<double>* factors) {
+  std::istringstream in(dat);
+  factors->clear();
+  bool block = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.find("B U C K L I N G   F A C T O R") != std::string::npos) {
+      block = true, factors->clear();
+      continue;
+    }
+    if (!block) continue;
+    std::istringstream row(line);
+    int mode = 0;
+    double factor = 0.0;
+    if (row >> mode >> factor) factors->push_back(factor);
+    else if (!factors->empty()) block = false;  // the block ends at the first line after its rows
+  }
+  if (factors->empty()) return Status::InvalidInput("ccx .dat: no buckling factors");
   return Status::Ok();
 }
 

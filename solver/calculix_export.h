@@ -52,6 +52,10 @@ struct CalculixExportOptions {
   int subdivisions = 1;  // elements per member, ≥ 1
   CalculixSectionShape shape;
   std::string title = "pqlayout frame model";
+  // > 0: the deck's step is *BUCKLE for this many load factors of the same *CLOAD (issue 18's
+  // cross-check of solver/frame_buckling.h) instead of *STATIC. B32R only: ccx 2.20 has no
+  // stress stiffness for U1 (it prints no factors).
+  int buckling_modes = 0;
 };
 
 // Writes the deck: nodes, elements, material, sections, *BOUNDARY, one *STATIC step with
@@ -67,5 +71,9 @@ bool CalculixElementFromName(const std::string& name, CalculixElement* element);
 // (u_x, u_y, u_z) (U1 nodes print rotations too; they are dropped). InvalidInput if there
 // is no such block or a line does not parse.
 Status ReadCalculixDisplacements(const std::string& dat_text, std::map<int, Eigen::Vector3d>* displacements);
+
+// The factors of the "B U C K L I N G   F A C T O R   O U T P U T" block of a ccx .dat file,
+// in mode order. InvalidInput if there is no such block or it holds no factor.
+Status ReadCalculixBucklingFactors(const std::string& dat_text, std::vector<double>* factors);
 
 }  // namespace pqlayout
