@@ -18,7 +18,7 @@ namespace pqlayout {
 namespace {
 
 // The rows of the table: (stage, metric, label). Lower is better for all but quad fraction
-// and the two rows that say so.
+// and the rows that say so.
 struct Row {
   const char* stage;
   const char* metric;
@@ -35,8 +35,11 @@ const Row kRows[] = {
     {"analyze", "compliance_node_max", "nodal compliance, max [J]"},
     {"analyze", "compliance_per_tonne", "compliance per tonne of steel [J/t]"},
     {"analyze", "max_displacement", "max displacement [m]"},
+    {"stiffen", "buckling_factor_before", "buckling load factor λ₁, planarised (higher is better)"},
     {"analyze", "buckling_factor", "buckling load factor λ₁ (higher is better)"},
+    {"stiffen", "utilisation_max_before", "member utilisation η max, planarised"},
     {"analyze", "utilisation_max", "member utilisation η, max"},
+    {"stiffen", "span_over_deflection_before", "span / max deflection, planarised (higher is better)"},
     {"analyze", "span_over_deflection", "span / max deflection (higher is better)"},
     {"analyze", "steel_mass", "steel mass [kg]"},
     {"analyze", "n_nodes", "nodes"},

@@ -138,7 +138,7 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   LOG(INFO) << "analyze: steel " << frame.steel_mass / 1000.0 << " t; compliance " << r.compliance << " J (node mean "
             << mean << ", max " << max_c << "), max |u| " << max_u * 1000.0 << " mm";
   StructuralChecks checks;
-  PQ_RETURN_IF_ERROR(RunStructuralChecks(frame, r, state->config.analysis, &checks));
+  PQ_RETURN_IF_ERROR(RunStructuralChecks(frame, r, state->config.analysis, &checks).WithContext("analyze"));
   metrics->update(checks.ToJson(frame));
   PQ_RETURN_IF_ERROR(WriteAnalysisTables(*state, frame, r, per_vertex, checks.utilisation, out));
   PQ_RETURN_IF_ERROR(

@@ -21,6 +21,7 @@
 #include "problems/residuals/joint_length_residual.h"
 #include "problems/stiffen_manifold.h"
 #include "problems/stiffen_problem.h"
+#include "problems/structural_checks.h"
 #include "solver/ceres_options.h"
 #include "solver/cholmod_solver.h"
 
@@ -51,7 +52,13 @@ nlohmann::json StiffenReport::ToJson() const {
           {"evaluations", evaluations},
           {"held_vertices", held_vertices},
           {"frame_seconds", seconds_frame},
-          {"ceres_seconds", seconds_ceres}};
+          {"ceres_seconds", seconds_ceres},
+          {"buckling_factor_before", checks_before.value("buckling_factor", nlohmann::json())},
+          {"buckling_factor_after", checks_after.value("buckling_factor", nlohmann::json())},
+          {"utilisation_max_before", checks_before.value("utilisation_max", nlohmann::json())},
+          {"utilisation_max_after", checks_after.value("utilisation_max", nlohmann::json())},
+          {"span_over_deflection_before", checks_before.value("span_over_deflection", nlohmann::json())},
+          {"span_over_deflection_after", checks_after.value("span_over_deflection", nlohmann::json())}};
 }
 
 std::vector<double> KinkAngles(const PolyMesh& mesh) {
@@ -332,6 +339,16 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
   GridCompliance last;
   SetPoints(World(P, q), &mesh->mesh);
   PQ_RETURN_IF_ERROR(EvaluateGridCompliance(mesh->mesh, restraints, analysis, false, &last).WithContext("stiffen"));
+  if (report->iterations > 0) {  // what the reshaping did to buckling, utilisation and deflection
+    StructuralChecks before, after;
+    PQ_RETURN_IF_ERROR(RunStructuralChecks(first.frame, first.result, analysis, &before, false).WithContext("stiffen"));
+    PQ_RETURN_IF_ERROR(RunStructuralChecks(last.frame, last.result, analysis, &after, false).WithContext("stiffen"));
+    report->checks_before = before.ToJson(first.frame), report->checks_after = after.ToJson(last.frame);
+    LOG(INFO) << "stiffen: buckling factor " << report->checks_before["buckling_factor"] << " → "
+              << report->checks_after["buckling_factor"] << ", utilisation max " << report->checks_before["utilisation_max"]
+              << " → " << report->checks_after["utilisation_max"] << ", span / deflection "
+              << report->checks_before["span_over_deflection"] << " → " << report->checks_after["span_over_deflection"];
+  }
   if (last.frame.joints != first.frame.joints)  // the hinges are penalties: say so if one gave way
     LOG(WARNING) << "stiffen: the frame has " << last.frame.joints << " joints after, " << first.frame.joints
                  << " before (a member became shorter than the section depth, or a joint longer)";

@@ -65,6 +65,9 @@ struct StiffenReport {
   int iterations = 0, evaluations = 0, held_vertices = 0;
   double seconds_frame = 0.0, seconds_ceres = 0.0;
   std::vector<double> normal_offset;               // per vertex, m (along the reference normal)
+  // The engineering checks of the planarised and the stiffened frame (problems/structural_checks.h):
+  // buckling_factor, utilisation_max, span_over_deflection each (null when not computed).
+  nlohmann::json checks_before, checks_after;
   nlohmann::json ToJson() const;
 };
 

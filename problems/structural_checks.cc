@@ -22,7 +22,8 @@ SectionModuli ModuliOf(const SectionOptions& s) {
 
 }  // namespace
 
-Status RunStructuralChecks(const GridFrame& frame, const FrameResult& r, const AnalysisOptions& a, StructuralChecks* c) {
+Status RunStructuralChecks(const GridFrame& frame, const FrameResult& r, const AnalysisOptions& a, StructuralChecks* c,
+                           bool log) {
   const FrameModel& model = frame.model;
   c->utilisation = MemberUtilisation(model, r, ModuliOf(a.section), a.material.yield_strength);
   Eigen::AlignedBox2d plan;
@@ -33,16 +34,16 @@ Status RunStructuralChecks(const GridFrame& frame, const FrameResult& r, const A
   c->span = plan.sizes().maxCoeff();
   if (a.buckling_modes > 0) {
     const auto start = std::chrono::steady_clock::now();
-    PQ_RETURN_IF_ERROR(SolveBuckling(model, r, a.buckling_modes, &c->buckling).WithContext("analyze"));
+    PQ_RETURN_IF_ERROR(SolveBuckling(model, r, a.buckling_modes, &c->buckling));
     c->buckling_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     c->buckling_run = true;
-    if (c->buckling.buckles)
+    if (log && c->buckling.buckles)
       LOG(INFO) << "analyze: buckling factor " << c->buckling.factors.front() << " (" << c->buckling.factors.size()
                 << " found, " << c->buckling.operations << " solves, " << c->buckling_seconds << " s)";
-    else
-      LOG(INFO) << "analyze: no buckling under this load (no member is compressed enough)";
+    if (log && !c->buckling.buckles) LOG(INFO) << "analyze: no buckling under this load (no member is compressed enough)";
   }
   const double eta_max = c->utilisation.empty() ? 0.0 : *std::max_element(c->utilisation.begin(), c->utilisation.end());
+  if (!log) return Status::Ok();
   LOG(INFO) << "analyze: utilisation η max " << eta_max << " (f_y " << a.material.yield_strength / 1e6
             << " MPa); deflection max " << c->deflection_max * 1000.0 << " mm, span / deflection "
             << (c->deflection_max > 0.0 ? c->span / c->deflection_max : 0.0);

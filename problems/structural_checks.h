@@ -32,8 +32,10 @@ struct StructuralChecks {
   nlohmann::json ToJson(const GridFrame& frame) const;
 };
 
+// log: the results as INFO lines and a warning for members over η = 1 (analyze does; stiffen,
+// which checks the frame before and after, logs its own summary).
 Status RunStructuralChecks(const GridFrame& frame, const FrameResult& linear, const AnalysisOptions& a,
-                           StructuralChecks* checks);
+                           StructuralChecks* checks, bool log = true);
 
 // analysis/buckling_modes.csv, figures/buckling.svg (first mode), figures/utilisation.svg.
 Status WriteStructuralChecks(const SurfaceModel& surface, const PolyMesh& mesh, const GridFrame& frame,
