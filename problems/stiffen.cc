@@ -97,6 +97,8 @@ constexpr double kHingeWeight = 1e4;      // × stiffen.weights.edge_length: at 
 constexpr int kWindow = 20;               // Progress: the window of iterations …
 constexpr double kWindowGain = 5e-3;      // … that must lower the objective by this (relative) to go on
 constexpr double kRestartGain = 1e-3;     // a fresh L-BFGS run that gains less ends the stage
+constexpr double kStationary = 1e-9;      // a normal gradient below this (max |∂F/∂z_n|, F ~ 1) is a stationary start
+constexpr double kBump = 0.1;             // … from which the run starts at a bump of this × the normal room
 constexpr int kLineSearchSteps = 4;       // Wolfe steps per line search: the projection changes along it, and
                                           // zooming longer for the curvature condition rarely paid (h = 3 m, 1.25 m)
 
@@ -311,6 +313,40 @@ void Measure(const StiffenProblem& P, const ClosestPointQuery& query, const std:
   for (const double k : kinks) r->kink_mean_deg_after += k / kinks.size(), r->kink_max_deg_after = std::max(r->kink_max_deg_after, k);
 }
 
+// True if the objective's gradient along the reference normals vanishes at q: a flat plate
+// under gravity is a saddle of its compliance (arching up or sagging down both stiffen it),
+// where L-BFGS, seeing only the small in-plane gradient, never leaves the plane.
+bool Stationary(const Objective& F, const std::vector<Vec3>& q) {
+  const std::vector<double> z = F.box().Parameters(q);
+  std::vector<double> gradient(z.size());
+  double cost = 0.0;
+  if (z.empty() || !F.Evaluate(z.data(), &cost, gradient.data())) return false;
+  double normal = 0.0, tangential = 0.0;
+  for (size_t i = 0; i < gradient.size(); ++i)
+    (i % 3 == 2 ? normal : tangential) = std::max(i % 3 == 2 ? normal : tangential, std::abs(gradient[i]));
+  return normal <= kStationary * std::max(tangential, 1.0);
+}
+
+// q with every free vertex lifted along its reference normal by kBump × its normal room ×
+// (its edge-hop distance from the held vertices / the largest such distance): a dome-shaped
+// start that breaks the symmetry of a stationary planarised shell.
+std::vector<Vec3> Bumped(const StiffenProblem& P, const PolyMesh& mesh, std::vector<Vec3> q) {
+  std::vector<int> hops(P.held.size(), -1);
+  std::deque<int> queue;
+  for (size_t v = 0; v < P.held.size(); ++v)
+    if (P.held[v]) hops[v] = 0, queue.push_back(static_cast<int>(v));
+  while (!queue.empty()) {
+    const int v = queue.front();
+    queue.pop_front();
+    for (const auto w : mesh.vv_range(VertexHandle(v)))
+      if (hops[w.idx()] < 0) hops[w.idx()] = hops[v] + 1, queue.push_back(w.idx());
+  }
+  const int deepest = std::max(1, *std::max_element(hops.begin(), hops.end()));
+  for (size_t v = 0; v < q.size(); ++v)
+    if (!P.held[v] && hops[v] > 0) q[v][2] = std::min(P.upper[v][2], q[v][2] + kBump * P.upper[v][2] * hops[v] / deepest);
+  return q;
+}
+
 }  // namespace
 
 Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>& restraints,
@@ -333,6 +369,12 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
   PQ_RETURN_IF_ERROR(EvaluateGridCompliance(mesh->mesh, restraints, analysis, false, &first).WithContext("stiffen"));
   if (options.tolerance > 0.0 && options.max_iterations > 0 && report->held_vertices < static_cast<int>(x0.size())) {
     const Objective F(P, restraints, analysis, first.compliance, frame, &mesh->mesh, report);
+    if (Stationary(F, q)) {
+      LOG(INFO) << "stiffen: the planarised shell is a stationary point of the compliance (flat, or symmetric about "
+                   "its reference); starting from a bump of "
+                << kBump << " × the tolerance along the reference normal";
+      q = Bumped(P, mesh->mesh, q);
+    }
     PQ_RETURN_IF_ERROR(Minimise(F, kPlanarityMargin * target_delta, options, &q, report));
     PQ_RETURN_IF_ERROR(RestorePlanarity(P, target_delta, &q));
   }
