@@ -3,7 +3,9 @@
 // its integral curves and the regions where alignment is not enforced (paper Fig. 6), and
 // the level lines of the layout's two functions φ, ψ over the guidance (paper Figs. 7, 12),
 // and of the grid shell: planarity δ before/after planarisation (Fig. 8/13) and as an
-// oblique 3D view, nodal compliance (Fig. 9/14).
+// oblique 3D view, nodal compliance (Fig. 9/14), stiffen's offset, the buckling mode and
+// the member utilisation. Written in problems/figures.cc (the reference surface's fields)
+// and problems/shell_figures.cc (the grid shell), sharing problems/figure_common.h.
 //
 // Size: face fields of the reference (guidance magnitude): up to
 // FigureOptions::max_face_polygons faces every face is one <path> element

@@ -1,0 +1,44 @@
+// Helpers shared by the figure writers (problems/figures.cc: fields on the reference surface;
+// problems/shell_figures.cc: the grid shell): colour scales, the top-view frame (outline,
+// scale bar, north arrow, colour bar) and input checks. Internal to problems/.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "geometry/status.h"
+#include "geometry/surface_model.h"
+#include "geometry/svg_canvas.h"
+
+namespace pqlayout {
+namespace figure {
+
+using Rings = std::vector<std::vector<Eigen::Vector2d>>;
+
+// The colour map and value range for a field: a symmetric diverging map for values of
+// both signs, viridis from min to max otherwise.
+struct ColourScale {
+  ColourMap map = Viridis;
+  double lo = 0.0, hi = 1.0;
+  double T(double value) const { return hi > lo ? (value - lo) / (hi - lo) : 0.5; }
+};
+
+ColourScale ScaleFor(const std::vector<double>& values, bool allow_diverging);
+
+// The top view of a surface vertex, and the reference's bounding box in the top view.
+Eigen::Vector2d Xy(const SurfaceModel& surface, int v);
+Eigen::AlignedBox2d TopViewBounds(const SurfaceModel& surface);
+
+// Boundary outline, scale bar and north arrow; DrawFrame adds the colour bar.
+void DrawOutlineScaleAndNorth(const SurfaceModel& surface, SvgCanvas* canvas);
+void DrawFrame(const SurfaceModel& surface, const ColourScale& scale, const std::string& label, SvgCanvas* canvas);
+
+// InvalidInput naming `name` unless values has `expected` finite entries (one per `element`).
+Status CheckFinite(const std::vector<double>& values, int expected, const std::string& name,
+                   const std::string& element);
+
+}  // namespace figure
+}  // namespace pqlayout
