@@ -10,6 +10,7 @@ namespace pqlayout {
 namespace {
 
 std::atomic<int> g_signal{0};
+std::atomic<InterruptPoll> g_poll{nullptr};
 static_assert(std::atomic<int>::is_always_lock_free, "the handler may only touch a lock-free atomic");
 
 extern "C" void RecordSignal(int signal) {
@@ -33,8 +34,21 @@ void InstallInterruptHandlers() {
 
 int InterruptSignal() { return g_signal.load(); }
 
+void SetInterruptPoll(InterruptPoll poll) { g_poll.store(poll); }
+
+int PollInterrupt() {
+  if (g_signal.load() == 0) {
+    if (const InterruptPoll poll = g_poll.load()) {
+      if (const int signal = poll()) RecordSignal(signal);
+    }
+  }
+  return g_signal.load();
+}
+
+void ClearInterrupt() { g_signal.store(0); }
+
 Status CheckInterrupt() {
-  const int signal = InterruptSignal();
+  const int signal = PollInterrupt();
   if (signal == 0) return Status::Ok();
   return Status::Internal("interrupted by signal " + std::to_string(signal) + " (" + strsignal(signal) + ")");
 }

@@ -34,6 +34,22 @@ int InterruptSignal();
 // like any failure; main() recognises the interrupt by InterruptSignal(), not by the text.
 Status CheckInterrupt();
 
+// An embedding that hears stop requests its own way (the Python module: Ctrl-C, which Python
+// catches itself, or an exception raised in a progress callback) installs a poll. PollInterrupt
+// calls it when no signal has been recorded yet and records a nonzero return like a signal;
+// CheckInterrupt and the Ceres callback (solver/ceres_options.h) go through PollInterrupt, so
+// the poll runs before each stage and at every solver iteration, on the thread of the run.
+// nullptr removes it.
+using InterruptPoll = int (*)();
+void SetInterruptPoll(InterruptPoll poll);
+
+// The recorded signal after asking the poll (if any); 0 if none.
+int PollInterrupt();
+
+// Forgets a recorded signal, so that the next run in the same process starts afresh
+// (the Python module, between runs; tests).
+void ClearInterrupt();
+
 // Tests: behave as if `signal` had been received (0: as if none had).
 void SetInterruptForTesting(int signal);
 

@@ -63,6 +63,13 @@ class SurfaceModel {
   OpenMesh::VProp<T> VertexField(const std::string& name) {
     return OpenMesh::VProp<T>(mesh_, name.c_str());
   }
+  // A named double vertex field's values by vertex index (zeros if no stage set it).
+  std::vector<double> VertexFieldValues(const std::string& name) {
+    auto property = VertexField<double>(name);
+    std::vector<double> values(num_vertices());
+    for (int v = 0; v < num_vertices(); ++v) values[v] = property[VertexHandle(v)];
+    return values;
+  }
   template <typename T>
   OpenMesh::FProp<T> FaceField(const std::string& name) {
     return OpenMesh::FProp<T>(mesh_, name.c_str());

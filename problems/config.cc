@@ -440,15 +440,23 @@ json ConfigToJson(const Config& config) {
   return out;
 }
 
-std::string ConfigReferenceMarkdown() {
+json ConfigReference() {
   Config defaults;
   KeyTable table(&defaults);
+  json keys = json::array();
+  for (const auto& e : table.entries())
+    keys.push_back({{"key", e.key}, {"type", e.type}, {"default", e.get()}, {"meaning", e.comment}});
+  return keys;
+}
+
+std::string ConfigReferenceMarkdown() {
   std::ostringstream s;
   s << "| key | type | default | meaning |\n|---|---|---|---|\n";
-  for (const auto& e : table.entries()) {
-    std::string type = e.type;
+  for (const auto& e : ConfigReference()) {
+    std::string type = e["type"].get<std::string>();
     std::replace(type.begin(), type.end(), '|', '/');
-    s << "| `" << e.key << "` | " << type << " | `" << e.get().dump() << "` | " << e.comment << " |\n";
+    s << "| `" << e["key"].get<std::string>() << "` | " << type << " | `" << e["default"].dump() << "` | "
+      << e["meaning"].get<std::string>() << " |\n";
   }
   return s.str();
 }

@@ -198,6 +198,9 @@ Status ParseConfig(const std::string& yaml_text, const std::string& source_name,
 // The resolved config as nested JSON (every key, defaults included).
 nlohmann::json ConfigToJson(const Config& config);
 
+// The config reference: one object per key, {key, type, default, meaning}, in table order.
+nlohmann::json ConfigReference();
+
 // The config reference as a Markdown table: key, type, default, meaning.
 std::string ConfigReferenceMarkdown();
 

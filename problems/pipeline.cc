@@ -108,7 +108,8 @@ std::optional<Stage> StageFromName(const std::string& name) {
   return std::nullopt;
 }
 
-Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::json* report) {
+Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::json* report,
+                   PipelineState* state_out) {
   const auto run_start = std::chrono::steady_clock::now();
   const WarningCollector warnings;
   std::unique_ptr<OutputFiles> out;
@@ -133,6 +134,7 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     if (static_cast<int>(entry.stage) > static_cast<int>(options.until)) break;
     PQ_RETURN_IF_ERROR(CheckInterrupt());  // SIGINT/SIGTERM: stop before the next stage
     LOG(INFO) << entry.name << ": started";
+    if (options.progress) options.progress(entry.name, "started", 0.0);
     const auto stage_start = std::chrono::steady_clock::now();
     nlohmann::json metrics = nlohmann::json::object();
     PQ_RETURN_IF_ERROR(out->InFinalFolder(entry.run(&state, out.get(), &metrics)));
@@ -141,14 +143,20 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     (*report)["stages"][entry.name] = metrics;
     completed.push_back(entry.name);
     LOG(INFO) << entry.name << ": done in " << metrics["seconds"].get<double>() << " s";
+    if (options.progress) options.progress(entry.name, "done", metrics["seconds"].get<double>());
   }
   (*report)["run"]["completed_stages"] = completed;
   (*report)["run"]["total_seconds"] = SecondsSince(run_start);
   (*report)["warnings"] = warnings.warnings();
   PQ_RETURN_IF_ERROR(out->InFinalFolder(out->WriteText("report.json", report->dump(2) + "\n")));
   PQ_RETURN_IF_ERROR(out->InFinalFolder(WriteReportHtml(*report, out.get())));
-  PQ_RETURN_IF_ERROR(out->Commit());
-  LOG(INFO) << "wrote " << out->final_dir() << " in " << SecondsSince(run_start) << " s";
+  if (options.commit) {
+    PQ_RETURN_IF_ERROR(out->Commit());
+    LOG(INFO) << "wrote " << out->final_dir() << " in " << SecondsSince(run_start) << " s";
+  } else {
+    PQ_RETURN_IF_ERROR(CheckInterrupt());  // as Commit would: an interrupted run does not succeed
+  }
+  if (state_out) *state_out = std::move(state);
   return Status::Ok();
 }
 

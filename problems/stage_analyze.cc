@@ -61,8 +61,9 @@ VertexResults ResultsPerVertex(const GridFrame& frame, const FrameResult& r) {
   return out;
 }
 
-Status WriteAnalysisTables(const PipelineState& state, const GridFrame& frame, const FrameResult& r,
-                           const VertexResults& per_vertex, const std::vector<double>& utilisation, OutputFiles* out) {
+// analysis/nodes.csv and analysis/members.csv as columns (kept in PipelineState too).
+AnalysisTables BuildAnalysisTables(const PipelineState& state, const GridFrame& frame, const FrameResult& r,
+                                   const VertexResults& per_vertex, const std::vector<double>& utilisation) {
   const PolyMesh& mesh = state.shell.mesh;
   const size_t n = frame.node_of.size(), m = frame.model.members.size();
   std::vector<double> x(n), y(n), z(n), load(n), ux(n), uy(n), uz(n), c(n);
@@ -74,8 +75,8 @@ Status WriteAnalysisTables(const PipelineState& state, const GridFrame& frame, c
     ux[i] = u[0], uy[i] = u[1], uz[i] = u[2];
     c[i] = per_vertex.compliance[i];
   }
-  PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "x", "y", "z", "load_z", "ux", "uy", "uz", "compliance"},
-                                   {&x, &y, &z, &load, &ux, &uy, &uz, &c}, out->Path("analysis/nodes.csv")));
+  AnalysisTables tables;
+  tables.nodes = {{"x", x}, {"y", y}, {"z", z}, {"load_z", load}, {"ux", ux}, {"uy", uy}, {"uz", uz}, {"compliance", c}};
   std::vector<double> a(m), b(m), length(m), axial(m), ma_y(m), ma_z(m), mb_y(m), mb_z(m), torsion(m);
   for (size_t e = 0; e < m; ++e) {
     const auto& f = r.member_end_forces[e];
@@ -85,10 +86,18 @@ Status WriteAnalysisTables(const PipelineState& state, const GridFrame& frame, c
     axial[e] = r.axial_force[e], torsion[e] = f[9];
     ma_y[e] = f[4], ma_z[e] = f[5], mb_y[e] = f[10], mb_z[e] = f[11];
   }
-  return WriteCsvTable({"id", "node_a", "node_b", "length", "axial_force", "torsion", "moment_y_a", "moment_z_a",
-                        "moment_y_b", "moment_z_b", "utilisation"},
-                       {&a, &b, &length, &axial, &torsion, &ma_y, &ma_z, &mb_y, &mb_z, &utilisation},
-                       out->Path("analysis/members.csv"));
+  tables.members = {{"node_a", a},         {"node_b", b},         {"length", length},
+                    {"axial_force", axial}, {"torsion", torsion},   {"moment_y_a", ma_y},
+                    {"moment_z_a", ma_z},   {"moment_y_b", mb_y},   {"moment_z_b", mb_z},
+                    {"utilisation", utilisation}};
+  return tables;
+}
+
+Status WriteColumnTable(const ColumnTable& table, const std::string& path) {
+  std::vector<std::string> header = {"id"};
+  std::vector<const std::vector<double>*> columns;
+  for (const auto& [name, values] : table) header.push_back(name), columns.push_back(&values);
+  return WriteCsvTable(header, columns, path);
 }
 
 }  // namespace
@@ -140,7 +149,9 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   StructuralChecks checks;
   PQ_RETURN_IF_ERROR(RunStructuralChecks(frame, r, state->config.analysis, &checks).WithContext("analyze"));
   metrics->update(checks.ToJson(frame));
-  PQ_RETURN_IF_ERROR(WriteAnalysisTables(*state, frame, r, per_vertex, checks.utilisation, out));
+  state->analysis = BuildAnalysisTables(*state, frame, r, per_vertex, checks.utilisation);
+  PQ_RETURN_IF_ERROR(WriteColumnTable(state->analysis.nodes, out->Path("analysis/nodes.csv")));
+  PQ_RETURN_IF_ERROR(WriteColumnTable(state->analysis.members, out->Path("analysis/members.csv")));
   PQ_RETURN_IF_ERROR(
       WriteStructuralChecks(*state->surface, state->shell.mesh, frame, checks, state->config.guidance.source, out));
   if (state->config.analysis.export_calculix)

@@ -216,13 +216,6 @@ Status ReadGuidanceFile(const SurfaceModel& surface, const GuidanceOptions& opti
 
 namespace {
 
-std::vector<double> ReadVertexField(SurfaceModel& surface, const std::string& name) {
-  auto property = surface.VertexField<double>(name);
-  std::vector<double> values(surface.num_vertices());
-  for (int v = 0; v < surface.num_vertices(); ++v) values[v] = property[VertexHandle(v)];
-  return values;
-}
-
 Status WriteGuidanceOutputs(const SurfaceModel& surface, const std::vector<double>& v_z, const GuidanceField& g,
                             OutputFiles* out) {
   std::vector<double> x(surface.num_vertices()), y(x.size()), z(x.size()), zero(x.size(), 0.0);
@@ -277,7 +270,7 @@ nlohmann::json SourceMetrics(const SurfaceModel& surface, const GuidanceField& g
 Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
   SurfaceModel& surface = *state->surface;
   const GuidanceOptions& options = state->config.guidance;
-  const std::vector<double> v_z = ReadVertexField(surface, "v_z");
+  const std::vector<double> v_z = surface.VertexFieldValues("v_z");
   GuidanceField& g = state->guidance;
   if (options.source == "strain") PQ_RETURN_IF_ERROR(ComputeStrainGuidance(surface, v_z, options, &g));
   else if (options.source == "curvature") PQ_RETURN_IF_ERROR(ComputeCurvatureGuidance(surface, options, &g));

@@ -7,13 +7,7 @@ namespace pqlayout {
 Status WriteSurfaceFieldsVtk(const PipelineState& state, OutputFiles* out) {
   SurfaceModel& surface = *state.surface;
   SurfaceFields fields;
-  auto vertex_values = [&](const char* name) {
-    auto property = surface.VertexField<double>(name);
-    std::vector<double> values(surface.num_vertices());
-    for (int v = 0; v < surface.num_vertices(); ++v) values[v] = property[VertexHandle(v)];
-    return values;
-  };
-  const std::vector<double> v_z = vertex_values("v_z");
+  const std::vector<double> v_z = surface.VertexFieldValues("v_z");
   std::vector<Eigen::Vector3d> displacement(surface.num_vertices());
   for (int v = 0; v < surface.num_vertices(); ++v) displacement[v] = Eigen::Vector3d(0.0, 0.0, v_z[v]);
   fields.vertex_scalars = {{"v_z", v_z}};

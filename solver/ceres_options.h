@@ -14,13 +14,13 @@
 
 namespace pqlayout {
 
-// Ends a solve at the next iteration once SIGINT or SIGTERM has been received
-// (geometry/interrupt.h): Ceres returns USER_FAILURE, whose solution is not usable, so the
+// Ends a solve at the next iteration once SIGINT or SIGTERM has been received, or an
+// embedding's poll asks to stop (geometry/interrupt.h): Ceres returns USER_FAILURE, whose solution is not usable, so the
 // stage fails and the run ends as interrupted within one iteration.
 class InterruptCallback : public ceres::IterationCallback {
  public:
   ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    return InterruptSignal() != 0 ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+    return PollInterrupt() != 0 ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
 };
 
