@@ -12,7 +12,9 @@
 
 #include <Eigen/Geometry>
 
+#include "geometry/height_field.h"
 #include "geometry/planar_domain_mesher.h"
+#include "geometry/roof_generators.h"
 
 namespace pqlayout {
 namespace {
@@ -20,12 +22,6 @@ namespace {
 using GC = GreatCourtDimensions;
 constexpr double kGreatCourtLambda = 0.5;  // λ of the SPEC formula
 constexpr double kGreatCourtMu = 14.0;     // μ of the SPEC formula
-
-// A surface z = height(x, y) over a planar domain (loops[0] outer boundary, others holes).
-struct HeightField {
-  std::vector<DomainLoop> domain;
-  std::function<double(double, double)> height;
-};
 
 // β of the SPEC formula: blends the corner correction in from the ring (β = 0 at r = a) and
 // out towards the rectangle (β = 0 there). Each corner term √(p²+q²)/(pq) is written as
@@ -37,22 +33,6 @@ double GreatCourtBeta(double x, double y, double r) {
   const double corners = std::hypot(east, north) + std::hypot(east, south) +
                          std::hypot(west, north) + std::hypot(west, south);
   return (1.0 - GC::a / r) / corners;
-}
-
-DomainLoop Rectangle(double x_min, double x_max, double y_min, double y_max) {
-  DomainLoop loop;
-  loop.polygon = {{x_min, y_min}, {x_max, y_min}, {x_max, y_max}, {x_min, y_max}};
-  return loop;
-}
-
-DomainLoop CenteredRectangle(const GeneratorParams& params) {
-  return Rectangle(-0.5 * params.width, 0.5 * params.width, -0.5 * params.depth,
-                   0.5 * params.depth);
-}
-
-Status RequirePositive(double value, const std::string& key) {
-  if (std::isfinite(value) && value > 0.0) return Status::Ok();
-  return Status::InvalidInput(key + " must be positive and finite, got " + std::to_string(value));
 }
 
 Status RequireRectangle(const GeneratorParams& params) {
@@ -148,7 +128,14 @@ const std::vector<Generator>& Generators() {
                                                     {"barrel", Barrel},
                                                     {"disk", Disk},
                                                     {"annulus", Annulus},
-                                                    {"plane", Plane}};
+                                                    {"plane", Plane},
+                                                    {"dome_circular", DomeCircular},
+                                                    {"saddle_elliptic", SaddleElliptic},
+                                                    {"canopy", Canopy},
+                                                    {"l_shape", LShape},
+                                                    {"hole_offcentre", HoleOffCentre},
+                                                    {"two_holes", TwoHoles},
+                                                    {"wavy", Wavy}};
   return generators;
 }
 

@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "geometry/surface_generators.h"
 #include "problems/config_rules.h"
 #include "problems/config_yaml.h"
 
@@ -182,12 +183,14 @@ KeyTable::KeyTable(Config* c) {
           "threads of Ceres, OpenBLAS and OpenMP; 1 (default) gives bit-identical results on every machine, more may not");
   auto& s = c->surface;
   Path("surface.file", &s.file, "reference mesh (OBJ, PLY, OFF or STL; metres); relative paths are relative to the config file");
-  Choice("surface.generator", &s.generator, {"", "great_court", "dome", "hypar", "barrel", "plane", "disk", "annulus"},
-         "built-in reference surface, used when surface.file is empty");
+  std::vector<std::string> generators = {""};
+  for (const auto& name : GeneratorNames()) generators.push_back(name);
+  Choice("surface.generator", &s.generator, generators,
+         "built-in reference surface, used when surface.file is empty (the corpus roofs: examples/corpus)");
   Number("surface.edge_length", &s.edge_length, Positive(kMaxLength), "generator: target triangle edge length, m");
   Number("surface.width", &s.width, Positive(kMaxLength), "generator: x extent, m (disk, annulus: outer diameter)");
   Number("surface.depth", &s.depth, Positive(kMaxLength), "generator: y extent, m (annulus: inner diameter)");
-  Number("surface.rise", &s.rise, NonNegative(kMaxLength), "generator: crown height above the supports, m (dome, hypar, barrel)");
+  Number("surface.rise", &s.rise, NonNegative(kMaxLength), "generator: crown height above the supports (or relief), m; not for plane, disk, annulus");
 
   Condition("boundary.default", &c->boundary.default_condition, "support of every boundary vertex unless a rule overrides it");
   Rules("boundary.rules", &c->boundary.rules,

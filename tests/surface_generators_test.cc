@@ -16,84 +16,14 @@
 #include "geometry/planar_domain_mesher.h"
 #include "geometry/status.h"
 #include "geometry/surface_generators.h"
+#include "tests/generator_measures.h"
 
 namespace pqlayout {
 namespace {
 
 using GC = GreatCourtDimensions;
-constexpr double kDegree = M_PI / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-// ---------------------------------------------------------------------------------------
-// Measurements on a triangle mesh, computed here from the vertex positions.
-
-Eigen::Vector3d Corner(const TriMesh& mesh, FaceHandle f, int k) {
-  auto it = mesh.cfv_begin(f);
-  for (int i = 0; i < k; ++i) ++it;
-  return ToEigen(mesh.point(*it));
-}
-
-double Angle(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
-  return std::atan2(u.cross(v).norm(), u.dot(v));
-}
-
-struct MeshMeasures {
-  double area = 0.0;
-  double min_angle = M_PI;  // radians, in space
-  double max_edge = 0.0;
-  double min_normal_z = 1.0;  // z of the unit normal from the face's vertex order
-};
-
-MeshMeasures Measure(const TriMesh& mesh) {
-  MeshMeasures m;
-  for (FaceHandle f : mesh.faces()) {
-    const Eigen::Vector3d p[3] = {Corner(mesh, f, 0), Corner(mesh, f, 1), Corner(mesh, f, 2)};
-    const Eigen::Vector3d normal = (p[1] - p[0]).cross(p[2] - p[0]);
-    m.area += 0.5 * normal.norm();
-    m.min_normal_z = std::min(m.min_normal_z, normal.normalized().z());
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-      m.min_angle = std::min(m.min_angle, Angle(u, v));
-      m.max_edge = std::max(m.max_edge, u.norm());
-    }
-  }
-  return m;
-}
-
-int EulerCharacteristic(const TriMesh& mesh) {
-  return static_cast<int>(mesh.n_vertices()) - static_cast<int>(mesh.n_edges()) +
-         static_cast<int>(mesh.n_faces());
-}
-
-int CountBoundaryLoops(const TriMesh& mesh) {
-  std::vector<bool> visited(mesh.n_halfedges(), false);
-  int loops = 0;
-  for (HalfedgeHandle start : mesh.halfedges()) {
-    if (!mesh.is_boundary(start) || visited[start.idx()]) continue;
-    ++loops;
-    for (HalfedgeHandle h = start; !visited[h.idx()]; h = mesh.next_halfedge_handle(h)) {
-      visited[h.idx()] = true;
-    }
-  }
-  return loops;
-}
-
-bool HasVertexAt(const TriMesh& mesh, double x, double y) {
-  for (VertexHandle v : mesh.vertices()) {
-    if (mesh.point(v)[0] == x && mesh.point(v)[1] == y) return true;
-  }
-  return false;
-}
-
-double MaxHeightError(const TriMesh& mesh, const std::function<double(double, double)>& f) {
-  double error = 0.0;
-  for (VertexHandle v : mesh.vertices()) {
-    const OpenMesh::Vec3d& p = mesh.point(v);
-    error = std::max(error, std::abs(p[2] - f(p[0], p[1])));
-  }
-  return error;
-}
 
 // Area of the graph of f over [-w/2, w/2] x [-d/2, d/2] by the midpoint rule on the area
 // element √(1 + |∇f|²), given the gradient.
@@ -110,20 +40,6 @@ double GraphArea(double width, double depth,
     }
   }
   return area;
-}
-
-TriMesh Generate(const GeneratorParams& params) {
-  TriMesh mesh;
-  const Status status = GenerateSurface(params, &mesh);
-  EXPECT_TRUE(status.ok()) << status.message();
-  return mesh;
-}
-
-GeneratorParams Params(const std::string& name, double edge_length = 1.0) {
-  GeneratorParams params;
-  params.name = name;
-  params.edge_length = edge_length;
-  return params;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -383,8 +299,10 @@ TEST(GenerateSurface, RefusesBadParametersNamingTheKey) {
 }
 
 TEST(GenerateSurface, ListsEveryGenerator) {
-  const std::vector<std::string> expected = {"great_court", "dome",    "hypar", "barrel",
-                                             "disk",        "annulus", "plane"};
+  const std::vector<std::string> expected = {"great_court", "dome",         "hypar",           "barrel",
+                                             "disk",        "annulus",      "plane",           "dome_circular",
+                                             "saddle_elliptic", "canopy",   "l_shape",         "hole_offcentre",
+                                             "two_holes",   "wavy"};
   std::vector<std::string> names = GeneratorNames();
   EXPECT_EQ(names, expected);
   for (const std::string& name : names) {

@@ -1,0 +1,140 @@
+"""The roof corpus (issue 17): every roof of examples/corpus (and the Great Court) through the
+whole pipeline with strain and with curvature guidance, defaults only; one table of every
+stage's key metrics and time, each checked against the issue's targets.
+
+    bash benchmarks/corpus.sh                 # builds, then runs this; ~5 min on 2 cores
+    PYTHONPATH=build/python python3 benchmarks/corpus.py [--set KEY=VALUE ...] [--roofs a,b]
+
+Writes benchmarks/corpus.md (the table, misses in bold with the reason) and
+benchmarks/corpus.csv (every number). Uses the Python module: one process, no files per run.
+"""
+import argparse
+import csv
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+try:
+    import pqlayout
+except ImportError:
+    sys.path.insert(0, str(ROOT / "build" / "python"))
+    import pqlayout
+
+# (column, what it measures, the target as a predicate of (value, h), the target's text)
+TARGETS = [
+    ("alignment", "levelset: alignment RMS where weight > 0.5, °", lambda v, h: v <= 8.0, "≤ 8°"),
+    ("foldovers", "levelset: fold-overs", lambda v, h: v == 0, "0"),
+    ("min_crossing", "levelset: min crossing angle, °", lambda v, h: v >= 25.0, "≥ 25°"),
+    ("area_below_30", "levelset: area fraction crossing below 30°", lambda v, h: v <= 0.01, "≤ 1 %"),
+    ("spacing_cv", "levelset: spacing CV, max of φ and ψ", lambda v, h: v <= 0.25, "≤ 0.25"),
+    ("quad_fraction", "extract: quads / faces", lambda v, h: v >= 0.80, "≥ 0.80"),
+    ("interior_non_quads", "extract: non-quads touching no boundary", lambda v, h: v == 0, "0"),
+    ("boundary_deviation_h", "extract: boundary deviation / h", lambda v, h: v <= 0.01, "≤ 0.01 h"),
+    ("edge_min_h", "extract: shortest edge / h", lambda v, h: v >= 0.2, "≥ 0.2 h"),
+    ("planarity_max", "planarize: δ max", lambda v, h: v <= 1e-3, "≤ 1e-3"),
+    ("closeness_h", "planarize: closeness max / h", lambda v, h: v <= 0.02, "≤ 0.02 h"),
+]
+INFO = ["faces", "panels", "compliance_ratio", "levelset_s", "extract_s", "planarize_s", "stiffen_s", "total_s"]
+
+
+def measure(report):
+    s = report["stages"]
+    h = report["config"]["layout"]["spacing"]
+    lv, ex, pl = s["levelset"], s["extract"], s["planarize"]
+    return {
+        "alignment": lv["alignment_rms_deg_weight_above_half"],
+        "foldovers": lv["foldovers"],
+        "min_crossing": lv["min_crossing_angle_deg"],
+        "area_below_30": lv["area_fraction_below_min_angle"],
+        "spacing_cv": max(lv["spacing_cv_phi"], lv["spacing_cv_psi"]),
+        "quad_fraction": ex["quad_fraction"],
+        "interior_non_quads": len(ex.get("interior_non_quads", [])),
+        "boundary_deviation_h": ex["boundary_deviation"] / h,
+        "edge_min_h": ex["edge_length_min"],  # extract reports edge lengths relative to h
+        "planarity_max": pl["planarity_max"],
+        "closeness_h": pl["closeness_max"] / h,
+        "faces": s["surface"]["n_faces"],
+        "panels": ex["n_faces"],
+        "compliance_ratio": s.get("stiffen", {}).get("compliance_ratio"),
+        "levelset_s": lv["seconds"], "extract_s": ex["seconds"], "planarize_s": pl["seconds"],
+        "stiffen_s": s.get("stiffen", {}).get("seconds"),
+        "total_s": report["run"]["total_seconds"],
+    }
+
+
+def roofs(selected):
+    configs = sorted((ROOT / "examples" / "corpus").glob("*.yaml")) + [ROOT / "examples" / "great_court.yaml"]
+    return [c for c in configs if not selected or c.stem in selected]
+
+
+def fmt(value):
+    if value is None:
+        return "–"
+    if isinstance(value, float):
+        return f"{value:.3g}" if abs(value) < 1e4 else f"{value:.0f}"
+    return str(value)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--set", action="append", default=[], help="KEY=VALUE for every run")
+    parser.add_argument("--roofs", default="", help="comma-separated roof names (default: all)")
+    parser.add_argument("--out", default=str(HERE / "corpus"), help="output stem (.md, .csv)")
+    args = parser.parse_args()
+    rows = []
+    for config in roofs([r for r in args.roofs.split(",") if r]):
+        for source in ("strain", "curvature"):
+            start = time.monotonic()
+            row = {"roof": config.stem, "source": source}
+            try:
+                result = pqlayout.run(config, set=args.set + [f"guidance.source={source}"])
+                row.update(measure(result.report))
+                row["warnings"] = len(result.report.get("warnings", []))
+            except pqlayout.Error as e:
+                row["error"] = str(e)
+            misses = [name for name, _, ok, _ in TARGETS if name in row and not ok(row[name], None)]
+            row["misses"] = len(misses) if "error" not in row else None
+            print(f"{config.stem:>16} {source:>9}: {time.monotonic() - start:6.1f} s, "
+                  + (row.get("error") or f"{row['misses']} targets missed {misses}"), flush=True)
+            rows.append(row)
+    write_csv(rows, Path(args.out + ".csv"))
+    write_markdown(rows, Path(args.out + ".md"), args.set)
+
+
+def write_csv(rows, path):
+    columns = ["roof", "source"] + [t[0] for t in TARGETS] + INFO + ["misses", "warnings", "error"]
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
+        w.writeheader()
+        for row in rows:
+            w.writerow({k: row.get(k, "") for k in columns})
+
+
+def write_markdown(rows, path, sets):
+    lines = ["# Roof corpus: every roof × both guidance sources, defaults only", "",
+             f"`bash benchmarks/corpus.sh{''.join(' --set ' + s for s in sets)}` on {time.strftime('%Y-%m-%d')}, "
+             f"pqlayout {pqlayout.version()}. A target missed is **bold**. Columns:", ""]
+    lines += [f"- `{name}`: {what}, target {text}" for name, what, _, text in TARGETS]
+    lines += ["- then: reference triangles, panels, stiffen's compliance ratio, seconds of level sets, "
+              "extraction, planarisation, stiffen and the whole run", ""]
+    header = ["roof", "source"] + [t[0] for t in TARGETS] + INFO
+    lines += ["| " + " | ".join(header) + " |", "|" + "---|" * 2 + "---:|" * (len(header) - 2)]
+    for row in rows:
+        if "error" in row:
+            lines.append(f"| {row['roof']} | {row['source']} | **refused or failed: {row['error']}** |")
+            continue
+        cells = [row["roof"], row["source"]]
+        for name, _, ok, _ in TARGETS:
+            cells.append(fmt(row[name]) if ok(row[name], None) else f"**{fmt(row[name])}**")
+        cells += [fmt(row.get(k)) for k in INFO]
+        lines.append("| " + " | ".join(cells) + " |")
+    met = sum(1 for r in rows if r.get("misses") == 0)
+    lines += ["", f"All targets met: {met} of {len(rows)} runs."]
+    path.write_text("\n".join(lines) + "\n")
+    print(f"wrote {path} and {path.with_suffix('.csv')}: all targets met in {met} of {len(rows)} runs")
+
+
+if __name__ == "__main__":
+    main()
