@@ -38,6 +38,8 @@ struct PipelineState {
   ExtractedMesh quads;                    // stage extract: quad-dominant mesh + reference origins
   ExtractedMesh planarized;               // stage planarize: the same mesh with planar faces
   ExtractedMesh shell;                    // stage stiffen: the final grid shell (= planarized when off)
+  std::vector<double> normal_offset;      // stage stiffen: per shell vertex, m from the planarised mesh
+  std::vector<double> nodal_compliance;   // stage analyze: per shell vertex, J
 };
 
 // One stage: reads and extends state, writes files through out, fills metrics (JSON object;

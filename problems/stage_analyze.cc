@@ -146,6 +146,7 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   if (state->config.analysis.export_calculix)
     PQ_RETURN_IF_ERROR(WriteCalculixModel(model, state->config.analysis,
                                           checks.buckling.buckles ? state->config.analysis.buckling_modes : 0, out));
+  state->nodal_compliance = per_vertex.compliance;  // for report.html's 3D view
   return WriteComplianceFigure(*state->surface, state->shell.mesh, per_vertex.compliance, 0.0,
                                "Nodal compliance of the grid shell (" + state->config.guidance.source + " guidance)",
                                out->Path("figures/compliance.svg"));
