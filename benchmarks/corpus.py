@@ -24,7 +24,8 @@ except ImportError:
 
 # (column, what it measures, the target as a predicate of (value, h), the target's text)
 TARGETS = [
-    ("alignment", "levelset: alignment RMS where weight > 0.5, °", lambda v, h: v <= 8.0, "≤ 8°"),
+    ("alignment", "levelset: alignment RMS where weight > 0.5, ° (n/a: no face has weight > 0.5, nothing to align)",
+     lambda v, h: v is None or v <= 8.0, "≤ 8°"),
     ("foldovers", "levelset: fold-overs", lambda v, h: v == 0, "0"),
     ("min_crossing", "levelset: min crossing angle, °", lambda v, h: v >= 25.0, "≥ 25°"),
     ("area_below_30", "levelset: area fraction crossing below 30°", lambda v, h: v <= 0.01, "≤ 1 %"),
@@ -44,7 +45,7 @@ def measure(report):
     h = report["config"]["layout"]["spacing"]
     lv, ex, pl = s["levelset"], s["extract"], s["planarize"]
     return {
-        "alignment": lv["alignment_rms_deg_weight_above_half"],
+        "alignment": lv["alignment_rms_deg_weight_above_half"] if s["guidance"]["area_weight_above_half"] > 0 else None,
         "foldovers": lv["foldovers"],
         "min_crossing": lv["min_crossing_angle_deg"],
         "area_below_30": lv["area_fraction_below_min_angle"],
@@ -71,7 +72,7 @@ def roofs(selected):
 
 def fmt(value):
     if value is None:
-        return "–"
+        return "n/a"
     if isinstance(value, float):
         return f"{value:.3g}" if abs(value) < 1e4 else f"{value:.0f}"
     return str(value)

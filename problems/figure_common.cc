@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/planarity.h"
+
 namespace pqlayout {
 namespace figure {
 
@@ -24,6 +26,28 @@ Rings BoundaryOutline(const SurfaceModel& surface) {
 }
 
 }  // namespace
+
+std::vector<Eigen::Vector3d> FacePoints(const PolyMesh& mesh, FaceHandle f) {
+  std::vector<Eigen::Vector3d> points;
+  for (const auto v : mesh.fv_range(f)) points.push_back(ToEigen(mesh.point(v)));
+  return points;
+}
+
+std::vector<double> PlanarityPerFace(const PolyMesh& mesh) {
+  std::vector<double> delta(mesh.n_faces());
+  for (const auto f : mesh.faces()) delta[f.idx()] = PlanarityDelta(FacePoints(mesh, f));
+  return delta;
+}
+
+std::vector<double> FaceMeans(const PolyMesh& mesh, const std::vector<double>& per_vertex) {
+  std::vector<double> mean(mesh.n_faces(), 0.0);
+  for (const auto f : mesh.faces()) {
+    double sum = 0.0;
+    for (const auto v : mesh.fv_range(f)) sum += per_vertex[v.idx()];
+    mean[f.idx()] = sum / mesh.valence(f);
+  }
+  return mean;
+}
 
 ColourScale ScaleFor(const std::vector<double>& values, bool allow_diverging) {
   const auto [min_it, max_it] = std::minmax_element(values.begin(), values.end());

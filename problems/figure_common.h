@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "geometry/mesh.h"
 #include "geometry/status.h"
 #include "geometry/surface_model.h"
 #include "geometry/svg_canvas.h"
@@ -35,6 +36,13 @@ Eigen::AlignedBox2d TopViewBounds(const SurfaceModel& surface);
 // Boundary outline, scale bar and north arrow; DrawFrame adds the colour bar.
 void DrawOutlineScaleAndNorth(const SurfaceModel& surface, SvgCanvas* canvas);
 void DrawFrame(const SurfaceModel& surface, const ColourScale& scale, const std::string& label, SvgCanvas* canvas);
+
+// Per face of a grid shell: its planarity δ (geometry/planarity.h), and the mean of a
+// per-vertex value over its vertices (how the compliance, offset and buckling figures fill
+// a face; report.html's 3D view colours its faces with the same numbers).
+std::vector<Eigen::Vector3d> FacePoints(const PolyMesh& mesh, FaceHandle f);
+std::vector<double> PlanarityPerFace(const PolyMesh& mesh);
+std::vector<double> FaceMeans(const PolyMesh& mesh, const std::vector<double>& per_vertex);
 
 // InvalidInput naming `name` unless values has `expected` finite entries (one per `element`).
 Status CheckFinite(const std::vector<double>& values, int expected, const std::string& name,

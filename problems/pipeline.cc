@@ -89,6 +89,26 @@ nlohmann::json BuildInfoJson() {
   return {{"version", info.version}, {"git_revision", info.git_revision}, {"libraries", libraries}};
 }
 
+// What report.html's 3D view draws: the final shell, its planarity, and the offset and
+// compliance where computed; after --until planarize or extract the mesh of that stage;
+// before extract nothing (the page has no 3D view).
+View3dData View3dOf(const PipelineState& state) {
+  View3dData view;
+  for (const ExtractedMesh* mesh : {&state.shell, &state.planarized, &state.quads}) {
+    if (mesh->mesh.n_faces() > 0) {
+      view.shell = &mesh->mesh;
+      break;
+    }
+  }
+  view.surface = state.surface.get();
+  view.target_delta = state.config.planarize.target_delta;
+  for (const auto& [name, column] : state.analysis.nodes)
+    if (name == "compliance") view.nodal_compliance = &column;
+  view.normal_offset = &state.normal_offset;
+  view.offset_tolerance = state.config.stiffen.tolerance;
+  return view;
+}
+
 }  // namespace
 
 const std::vector<std::string>& StageNames() {
@@ -149,7 +169,7 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
   (*report)["run"]["total_seconds"] = SecondsSince(run_start);
   (*report)["warnings"] = warnings.warnings();
   PQ_RETURN_IF_ERROR(out->InFinalFolder(out->WriteText("report.json", report->dump(2) + "\n")));
-  PQ_RETURN_IF_ERROR(out->InFinalFolder(WriteReportHtml(*report, out.get())));
+  PQ_RETURN_IF_ERROR(out->InFinalFolder(WriteReportHtml(*report, out.get(), View3dOf(state))));
   if (options.commit) {
     PQ_RETURN_IF_ERROR(out->Commit());
     LOG(INFO) << "wrote " << out->final_dir() << " in " << SecondsSince(run_start) << " s";

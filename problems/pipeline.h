@@ -51,6 +51,7 @@ struct PipelineState {
   ExtractedMesh planarized;               // stage planarize: the same mesh with planar faces
   ExtractedMesh shell;                    // stage stiffen: the final grid shell (= planarized when off)
   AnalysisTables analysis;                // stage analyze
+  std::vector<double> normal_offset;      // stage stiffen: per shell vertex, m from the planarised mesh
 };
 
 // One stage: reads and extends state, writes files through out, fills metrics (JSON object;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/atomic_file.h"
+#include "problems/report_view3d.h"
 
 namespace pqlayout {
 namespace {
@@ -319,15 +320,15 @@ std::string MetricsTables(const nlohmann::json& report) {
 
 }  // namespace
 
-Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out) {
+Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out, const View3dData& view3d) {
   std::ostringstream page;
   page << PageStart("pqlayout report") << "<h1>pqlayout: statics-sensitive layout</h1>\n"
        << "<p class=\"sub\">" << Escape(Metric(report, "surface", "source")) << " · "
        << Escape(Format(At(report, {"config", "guidance", "source"}))) << " guidance · h = "
        << Escape(Format(At(report, {"config", "layout", "spacing"}))) << " m</p>\n"
        << "<h2>Summary</h2>\n<div class=\"cols\"><div>" << Summary(report) << "</div><div>"
-       << KeyResults(report) << "</div><div>" << Timings(report) << "</div></div>\n<h2>Figures</h2>\n"
-       << "<div class=\"figures\">\n";
+       << KeyResults(report) << "</div><div>" << Timings(report) << "</div></div>\n"
+       << View3dHtml(view3d) << "<h2>Figures</h2>\n<div class=\"figures\">\n";
   int index = 0;
   for (const auto& figure : kFigures) {
     if (!Completed(report, figure.stage)) continue;

@@ -10,7 +10,8 @@
 // elements, and — rasterised onto a canvas — the fraction of non-white pixels and the
 // number of distinct colours inside the SVG's data-plot rectangle) and stores the result
 // in the figure's data-check attribute; scripts/check_report.sh reads these from headless
-// Chromium's --dump-dom. The ids inside each inlined SVG are prefixed per figure, so that
+// Chromium's --dump-dom. Between the summary and the figures, the 3D view of the grid shell
+// (problems/report_view3d.h) measures itself likewise. The ids inside each inlined SVG are prefixed per figure, so that
 // the gradients and patterns of one figure never resolve to another's.
 #pragma once
 
@@ -19,11 +20,13 @@
 #include <nlohmann/json.hpp>
 
 #include "problems/output_files.h"
+#include "problems/report_view3d.h"
 
 namespace pqlayout {
 
-// Reads the figures already written under out's figures/ folder.
-Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out);
+// Reads the figures already written under out's figures/ folder. view3d: what the 3D view
+// draws (problems/report_view3d.h); without a shell (the default) the page has no 3D view.
+Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out, const View3dData& view3d = {});
 
 // DIR/report.html after compare: `comparison` is compare.json's content; reads
 // DIR/figures/compliance_{strain,curvature}.svg and DIR/{strain,curvature}/figures/*.svg.

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "geometry/planarity.h"
 #include "geometry/svg_canvas.h"
 #include "problems/figure_common.h"
 #include "problems/figures.h"
@@ -43,12 +42,6 @@ namespace {
 
 const Rgb kMemberInk{0x28, 0x28, 0x28};  // grid-shell members
 const Rgb kFaintFace{0xe6, 0xe6, 0xe6};  // faces behind coloured members
-
-std::vector<Eigen::Vector3d> FacePoints(const PolyMesh& mesh, FaceHandle f) {
-  std::vector<Eigen::Vector3d> points;
-  for (const auto v : mesh.fv_range(f)) points.push_back(ToEigen(mesh.point(v)));
-  return points;
-}
 
 std::vector<Vector2d> TopView(const std::vector<Eigen::Vector3d>& points) {
   std::vector<Vector2d> xy;
@@ -99,12 +92,6 @@ Status CheckPlanarityInput(const PolyMesh& mesh, double target_delta, const std:
   return Status::Ok();
 }
 
-std::vector<double> PlanarityPerFace(const PolyMesh& mesh) {
-  std::vector<double> delta(mesh.n_faces());
-  for (const auto f : mesh.faces()) delta[f.idx()] = PlanarityDelta(FacePoints(mesh, f));
-  return delta;
-}
-
 // Log colour bar with the target marked, and the legend: faces meeting the target, δ max.
 void DrawPlanarityKey(const PlanarityScale& scale, const std::vector<double>& delta,
                       SvgCanvas* canvas) {
@@ -130,11 +117,9 @@ Status WriteFaceMeanFigure(const SurfaceModel& surface, const PolyMesh& mesh, co
                            const ColourScale& scale, const std::string& label, const std::string& title,
                            const std::string& path, const FigureOptions& options) {
   SvgCanvas canvas(TopViewBounds(surface, mesh), options.width_px, title);
-  for (const auto f : mesh.faces()) {
-    double sum = 0.0;
-    for (const auto v : mesh.fv_range(f)) sum += value[v.idx()];
-    canvas.Polygon(TopView(FacePoints(mesh, f)), scale.map(std::clamp(scale.T(sum / mesh.valence(f)), 0.0, 1.0)));
-  }
+  const std::vector<double> mean = FaceMeans(mesh, value);
+  for (const auto f : mesh.faces())
+    canvas.Polygon(TopView(FacePoints(mesh, f)), scale.map(std::clamp(scale.T(mean[f.idx()]), 0.0, 1.0)));
   DrawMembers(mesh, &canvas);
   DrawFrame(surface, scale, label, &canvas);
   return canvas.Write(path);

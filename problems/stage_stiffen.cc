@@ -24,6 +24,7 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
                                  state->config.analysis, options, target, state->config.layout.spacing, &state->shell,
                                  &report));
   *metrics = report.ToJson();
+  state->normal_offset = report.normal_offset;  // for report.html's 3D view
   (*metrics)["tolerance"] = options.tolerance;
   if (options.tolerance == 0.0) {
     LOG(INFO) << "stiffen: off (stiffen.tolerance = 0); compliance " << report.compliance_before << " J";

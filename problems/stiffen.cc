@@ -34,6 +34,10 @@ constexpr double kSliverArea = 0.01;
 }  // namespace
 
 nlohmann::json StiffenReport::ToJson() const {
+  // The checks are null when the stage is off (stiffen.tolerance = 0): their keys are then null too.
+  const auto check = [](const nlohmann::json& checks, const char* key) {
+    return checks.is_object() ? checks.value(key, nlohmann::json()) : nlohmann::json();
+  };
   return {{"compliance_before", compliance_before},
           {"compliance_after", compliance_after},
           {"compliance_ratio", compliance_ratio},
@@ -53,12 +57,12 @@ nlohmann::json StiffenReport::ToJson() const {
           {"held_vertices", held_vertices},
           {"frame_seconds", seconds_frame},
           {"ceres_seconds", seconds_ceres},
-          {"buckling_factor_before", checks_before.value("buckling_factor", nlohmann::json())},
-          {"buckling_factor_after", checks_after.value("buckling_factor", nlohmann::json())},
-          {"utilisation_max_before", checks_before.value("utilisation_max", nlohmann::json())},
-          {"utilisation_max_after", checks_after.value("utilisation_max", nlohmann::json())},
-          {"span_over_deflection_before", checks_before.value("span_over_deflection", nlohmann::json())},
-          {"span_over_deflection_after", checks_after.value("span_over_deflection", nlohmann::json())}};
+          {"buckling_factor_before", check(checks_before, "buckling_factor")},
+          {"buckling_factor_after", check(checks_after, "buckling_factor")},
+          {"utilisation_max_before", check(checks_before, "utilisation_max")},
+          {"utilisation_max_after", check(checks_after, "utilisation_max")},
+          {"span_over_deflection_before", check(checks_before, "span_over_deflection")},
+          {"span_over_deflection_after", check(checks_after, "span_over_deflection")}};
 }
 
 std::vector<double> KinkAngles(const PolyMesh& mesh) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Opens a pqlayout report.html in headless Chromium and fails (exit 1) if a figure is missing
-# or empty, or if a screenshot of the whole page is blank.
+# or empty, if the 3D view is blank or does not turn, or if a screenshot of the whole page
+# is blank.
 #
 #   scripts/check_report.sh REPORT.html [SCREENSHOT.png]
 #
@@ -14,9 +15,25 @@
 # less than MIN_INK of its plot drawn fails. Then the page is screenshotted at its full
 # height (window 1280 px wide) and the PNG itself is loaded back into Chromium (as a data:
 # URL, so the canvas can read it) to check it has at least MIN_PAGE_INK non-white pixels
-# and MIN_PAGE_COLOURS distinct colours. Exit 0 if all is well, 1 if a check fails, 2 on
-# bad usage or if Chromium cannot be run. CHROMIUM overrides the browser binary;
-# SCREENSHOT_SCALE (default 1) scales the screenshot's pixels (0.5: half size, for docs).
+# and MIN_PAGE_COLOURS distinct colours.
+#
+# The 3D view (problems/report_view3d.h), where the page has one, measures itself the same
+# way once drawn — its WebGL canvas copied onto a 2D canvas: non-white fraction ("ink") and
+# distinct colours — then turns its camera by 30° about the vertical, draws again and counts
+# the pixels that changed ("rotated"), and writes the numbers into the section's data-check.
+# It fails here if the check did not run, WebGL was missing, the script failed, or the view
+# is blank (ink < MIN_VIEW_INK or colours < MIN_VIEW_COLOURS) or did not turn (rotated <
+# MIN_VIEW_ROTATED); a page without a 3D view (a run stopped before extract) only says so.
+# Headless, with --disable-gpu and on machines without one, WebGL runs on SwiftShader,
+# Chromium's CPU renderer (ANGLE on SwiftShader's Vulkan). Debian's Chromium 156 still falls
+# back to it by itself, but Chromium is retiring that automatic fallback, so the flags ask
+# for it: --use-angle=swiftshader --enable-unsafe-swiftshader ("unsafe" for arbitrary web
+# content; we open our own page only). The same renderer on every machine, GPU or not.
+# (--use-gl=swiftshader, the older spelling, leaves Chromium 156 with no WebGL at all.)
+#
+# Exit 0 if all is well, 1 if a check fails, 2 on bad usage or if Chromium cannot be run.
+# CHROMIUM overrides the browser binary; SCREENSHOT_SCALE (default 1) scales the
+# screenshot's pixels (0.5: half size, for docs).
 set -euo pipefail
 
 MIN_WIDTH=200        # rendered figure size on the page, CSS px
@@ -25,6 +42,9 @@ MIN_MARKS=5          # drawn SVG elements (path, rect, circle, use, ...)
 MIN_INK=0.02         # fraction of the plot rectangle that is not white
 MIN_PAGE_INK=0.05    # fraction of the screenshot that is not white
 MIN_PAGE_COLOURS=50  # distinct colours (4 bits per channel) in the screenshot
+MIN_VIEW_INK=0.05    # 3D view: fraction of the canvas that is not white
+MIN_VIEW_COLOURS=8   # 3D view: distinct colours (4 bits per channel)
+MIN_VIEW_ROTATED=0.02  # 3D view: fraction of its pixels that a 30° turn of the camera changes
 WINDOW_WIDTH=1280
 
 if [ $# -lt 1 ] || [ $# -gt 2 ]; then
@@ -38,7 +58,8 @@ command -v "$chromium" >/dev/null || { echo "$chromium: not found (Debian packag
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 shot=${2:-$tmp/screenshot.png}
-flags=(--headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking
+flags=(--headless --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader
+       --no-first-run --disable-background-networking
        --user-data-dir="$tmp/profile" --virtual-time-budget=5000 --window-size=$WINDOW_WIDTH,1000)
 
 # Chromium prints its DOM on stdout; its own log lines (dbus, ...) go to stderr.
@@ -86,6 +107,35 @@ while read -r name check; do
     failed=1
   fi
 done < "$tmp/figures.txt"
+
+# The 3D view's self-check (data-check="w=.. h=.. faces=.. ink=.. colours=.. rotated=..").
+view=$(grep -o '<section id="view3d"[^>]*>' "$tmp/dom.html" | head -1 || true)
+if [ -z "$view" ]; then
+  echo "--   3D view: none in this report"
+else
+  check=$(grep -o 'data-check="[^"]*"' <<< "$view" | sed -E 's/data-check="(.*)"/\1/' || true)
+  verdict=$(awk -v c="$check" -v mw=$MIN_WIDTH -v mh=$MIN_HEIGHT -v mi=$MIN_VIEW_INK -v mc=$MIN_VIEW_COLOURS \
+                -v mr=$MIN_VIEW_ROTATED '
+    BEGIN {
+      if (c == "") { print "its self-check did not run (script not run or over the time budget)"; exit; }
+      if (c == "nowebgl") { print "no WebGL in this Chromium (SwiftShader flags?)"; exit; }
+      if (c ~ /^error/) { print "script failed: " c; exit; }
+      n = split(c, kv, " ");
+      for (i = 1; i <= n; ++i) { split(kv[i], p, "="); v[p[1]] = p[2]; }
+      if (!("rotated" in v)) { print "unreadable check (" c ")"; exit; }
+      if (v["w"] < mw || v["h"] < mh) { print "too small: " v["w"] "x" v["h"] " px"; exit; }
+      if (v["faces"] < 1) { print "no faces drawn"; exit; }
+      if (v["ink"] < mi || v["colours"] < mc) { print "blank: ink " v["ink"] ", " v["colours"] " colours"; exit; }
+      if (v["rotated"] < mr) { print "does not turn: rotating the camera changed " v["rotated"] " of the pixels"; exit; }
+      print "ok";
+    }')
+  if [ "$verdict" = ok ]; then
+    echo "ok   3D view ($check)"
+  else
+    echo "FAIL 3D view: $verdict"
+    failed=1
+  fi
+fi
 
 # Screenshot of the whole page, then its ink and colours measured by Chromium itself.
 height=$(grep -o 'data-page-height="[0-9]*"' "$tmp/dom.html" | grep -o '[0-9]*' || echo 4000)

@@ -2,8 +2,12 @@
 // passes with every figure measured and a screenshot written; the same report with one
 // figure replaced by an empty frame (title, colour bar, scale bar, no data) or with a figure
 // missing fails and names the figure; a page whose figures claim to be fine but renders
-// blank fails on its screenshot. Skipped, with a message, where /usr/bin/chromium is absent.
-// Also (no browser needed) the page `compare` writes: table, both runs, figures in pairs.
+// blank fails on its screenshot. The 3D view (problems/report_view3d.h): the real report's
+// passes its self-check (drawn, not blank, changes when the camera turns); one whose data
+// hold no faces, or whose data cannot be read, fails and names the 3D view. Skipped, with a
+// message, where /usr/bin/chromium is absent.
+// Also (no browser needed) the 3D section's content, and the page `compare` writes: table,
+// both runs, figures in pairs.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -20,6 +24,7 @@
 #include "geometry/svg_canvas.h"
 #include "problems/output_files.h"
 #include "problems/report_html.h"
+#include "problems/report_view3d.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -94,6 +99,7 @@ TEST_F(ReportCheck, RealReportPassesWithEveryFigureAndAScreenshot) {
   EXPECT_EQ(r.exit_code, 0) << r.out;
   for (const char* figure : kFigures) EXPECT_NE(r.out.find(std::string("ok   ") + figure), std::string::npos) << figure << "\n" << r.out;
   EXPECT_NE(r.out.find("ok   screenshot"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ok   3D view (w="), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("FAIL"), std::string::npos) << r.out;
   ASSERT_TRUE(fs::exists(dir_ + "/shot.png"));
   EXPECT_GT(fs::file_size(dir_ + "/shot.png"), 10000u);
@@ -115,6 +121,32 @@ TEST_F(ReportCheck, EmptyOrMissingFigureFails) {
   EXPECT_NE(r.out.find("ok   shell_3d.svg"), std::string::npos) << r.out;
 }
 
+// The real report with its 3D data edited: no faces (a view that draws nothing), or data
+// that are not JSON (the view's script gives up). Both fail, naming the 3D view; the figures
+// stay fine.
+TEST_F(ReportCheck, Empty3dViewFails) {
+  std::string html = ReadAll(dir_ + "/run/report.html");
+  const size_t faces = html.find("\"faces\":[");
+  ASSERT_NE(faces, std::string::npos);
+  const size_t start = faces + std::string("\"faces\":[").size();
+  html.erase(start, html.find(']', start) - start);
+  const Result r = CheckReport(dir_, testing::WriteFile(dir_, "no_faces.html", html));
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("FAIL 3D view: no faces drawn"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ok   planarity.svg"), std::string::npos) << r.out;
+}
+
+TEST_F(ReportCheck, Broken3dViewFails) {
+  std::string html = ReadAll(dir_ + "/run/report.html");
+  const std::string data = "<script type=\"application/json\" id=\"view3d-data\">";
+  const size_t at = html.find(data);
+  ASSERT_NE(at, std::string::npos);
+  html.insert(at + data.size(), "not json");
+  const Result r = CheckReport(dir_, testing::WriteFile(dir_, "broken_view.html", html));
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("FAIL 3D view: script failed"), std::string::npos) << r.out;
+}
+
 // Figures whose measurements look fine but a page that shows nothing: the screenshot check
 // is what fails.
 TEST_F(ReportCheck, BlankScreenshotFails) {
@@ -127,6 +159,59 @@ TEST_F(ReportCheck, BlankScreenshotFails) {
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_NE(r.out.find("ok   x.svg"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("FAIL screenshot"), std::string::npos) << r.out;
+}
+
+// A 3×2 grid of quads, z = x·y/10 (not planar), for the 3D section without a run.
+PolyMesh SmallShell() {
+  PolyMesh mesh;
+  std::vector<VertexHandle> v;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 3; ++i) v.push_back(mesh.add_vertex(PolyMesh::Point(i, j, i * j / 10.0)));
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i)
+      mesh.add_face(std::vector<VertexHandle>{v[4 * j + i], v[4 * j + i + 1], v[4 * j + i + 5], v[4 * j + i + 4]});
+  return mesh;
+}
+
+// The 3D section (no browser needed): data, metrics, three.js inlined; metrics whose
+// values are unusable left out; no section without faces, nor without a shell at all.
+TEST(View3dSection, HoldsDataMetricsAndThreeJs) {
+  const PolyMesh mesh = SmallShell();
+  const std::vector<double> compliance(mesh.n_vertices(), 2.5), offset(mesh.n_vertices(), 0.01);
+  View3dData data;
+  data.shell = &mesh;
+  data.nodal_compliance = &compliance;
+  data.normal_offset = &offset;
+  data.offset_tolerance = 0.1;
+  const std::string html = View3dHtml(data);
+  EXPECT_NE(html.find("<section id=\"view3d\" data-faces=\"6\">"), std::string::npos);
+  EXPECT_NE(html.find("\"faces\":[4,0,1,5,4,4,1,2,6,5,"), std::string::npos);
+  EXPECT_NE(html.find("\"name\":\"nodal compliance"), std::string::npos);
+  EXPECT_NE(html.find("\"unit\":\"J\",\"log\":false,\"lo\":0,\"hi\":2.5,\"min\":2.5,\"max\":2.5"), std::string::npos);
+  EXPECT_NE(html.find("\"name\":\"planarity δ"), std::string::npos);
+  EXPECT_NE(html.find("\"unit\":\"mm\",\"log\":false,\"lo\":-100,\"hi\":100,\"min\":10,\"max\":10"), std::string::npos);
+  EXPECT_NE(html.find("THREE.OrbitControls"), std::string::npos);  // three.js and the controls, inlined
+  EXPECT_NE(html.find("REVISION"), std::string::npos);
+  EXPECT_EQ(html.find("<script src"), std::string::npos);  // nothing to fetch
+  int opened = 0, closed = 0;  // no "</script" inside the inlined code ends an element early
+  for (size_t at = html.find("<script"); at != std::string::npos; at = html.find("<script", at + 1)) ++opened;
+  for (size_t at = html.find("</script>"); at != std::string::npos; at = html.find("</script>", at + 1)) ++closed;
+  EXPECT_EQ(opened, 4);
+  EXPECT_EQ(closed, 4);
+
+  std::vector<double> bad = compliance;
+  bad[3] = std::nan("");
+  data.nodal_compliance = &bad;
+  data.offset_tolerance = 0.0;  // stiffen off: no offset
+  const std::string fewer = View3dHtml(data);
+  EXPECT_EQ(fewer.find("nodal compliance"), std::string::npos);
+  EXPECT_EQ(fewer.find("normal offset"), std::string::npos);
+  EXPECT_NE(fewer.find("planarity δ"), std::string::npos);
+
+  const PolyMesh empty;
+  data.shell = &empty;
+  EXPECT_EQ(View3dHtml(data), "");
+  EXPECT_EQ(View3dHtml(View3dData{}), "");
 }
 
 // DIR/report.html after compare (no browser needed): the comparison table, the two runs'

@@ -161,6 +161,14 @@ def test_dict_config_and_set(tmp_path):
         pqlayout.run(GREAT_COURT, set="layout.spacing=2")
 
 
+def test_stiffen_off_keeps_the_planarised_shell():
+    r = pqlayout.run({"surface": {"generator": "dome", "edge_length": 2.0}, "layout": {"spacing": 4.0}},
+                     set={"stiffen.tolerance": 0})
+    assert np.array_equal(r.quads.vertices, r.quads_planarized.vertices)
+    assert r.report["stages"]["stiffen"]["compliance_ratio"] == 1.0
+    assert r.report["stages"]["analyze"]["compliance_total"] > 0
+
+
 def test_bad_key_raises_config_error_naming_it():
     with pytest.raises(pqlayout.ConfigError, match="layout.spacnig"):
         pqlayout.run(GREAT_COURT, set={"layout.spacnig": 2.0})
