@@ -55,6 +55,7 @@ nlohmann::json StiffenReport::ToJson() const {
           {"iterations", iterations},
           {"evaluations", evaluations},
           {"held_vertices", held_vertices},
+          {"kept_planarised", kept_planarised},
           {"frame_seconds", seconds_frame},
           {"ceres_seconds", seconds_ceres},
           {"buckling_factor_before", check(checks_before, "buckling_factor")},
@@ -373,6 +374,7 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
   PQ_RETURN_IF_ERROR(EvaluateGridCompliance(mesh->mesh, restraints, analysis, false, &first).WithContext("stiffen"));
   if (options.tolerance > 0.0 && options.max_iterations > 0 && report->held_vertices < static_cast<int>(x0.size())) {
     const Objective F(P, restraints, analysis, first.compliance, frame, &mesh->mesh, report);
+    const std::vector<Vec3> q_start = q;
     if (Stationary(F, q)) {
       LOG(INFO) << "stiffen: the planarised shell is a stationary point of the compliance (flat, or symmetric about "
                    "its reference); starting from a bump of "
@@ -381,6 +383,15 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
     }
     PQ_RETURN_IF_ERROR(Minimise(F, kPlanarityMargin * target_delta, options, &q, report));
     PQ_RETURN_IF_ERROR(RestorePlanarity(P, target_delta, &q));
+    // Never hand on a shell whose panels are less planar than the target (or than the start).
+    const double start_delta = MaxPlanarity(P, World(P, q_start)), delta = MaxPlanarity(P, World(P, q));
+    if (delta > std::max(target_delta, start_delta)) {
+      LOG(WARNING) << "stiffen: the reshaped shell's δ max " << delta << " could not be brought within "
+                   << "planarize.target_delta " << target_delta << " inside the tolerance boxes; keeping the planarised "
+                   << "shell (allow more room: stiffen.slide, stiffen.tolerance)";
+      q = q_start;
+      report->kept_planarised = true;
+    }
   }
   GridCompliance last;
   SetPoints(World(P, q), &mesh->mesh);

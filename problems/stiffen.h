@@ -61,6 +61,9 @@ struct StiffenReport {
   double kink_mean_deg_before = 0.0, kink_max_deg_before = 0.0;  // angle between neighbouring face normals
   double kink_mean_deg_after = 0.0, kink_max_deg_after = 0.0;
   double steel_mass_change = 0.0;                  // (after − before) / before
+  // The optimised shell could not be brought back within planarize.target_delta, so the
+  // planarised one was kept (a warning says so; compliance_ratio is then 1).
+  bool kept_planarised = false;
   double min_member_length = 0.0;                  // after, m
   int iterations = 0, evaluations = 0, held_vertices = 0;
   double seconds_frame = 0.0, seconds_ceres = 0.0;

@@ -160,10 +160,19 @@ Status RestorePlanarity(const StiffenProblem& P, double target_delta, std::vecto
         problem.SetParameterBlockConstant(block);
         continue;
       }
+      // A coordinate whose box has no width (stiffen.slide = 0: no tangential slide) is held
+      // by a subset manifold: Ceres refuses a bound with lower = upper as infeasible.
+      std::vector<int> fixed;
       for (int k = 0; k < 3; ++k) {
+        if (P.lower[v][k] >= P.upper[v][k]) {
+          fixed.push_back(k);
+          continue;
+        }
         problem.SetParameterLowerBound(block, k, P.lower[v][k]);
         problem.SetParameterUpperBound(block, k, P.upper[v][k]);
       }
+      if (fixed.size() == 3) problem.SetParameterBlockConstant(block);
+      else if (!fixed.empty()) problem.SetManifold(block, new ceres::SubsetManifold(3, fixed));
       problem.AddResidualBlock(new FramedPointCost(AnchorResidual::Create(xk[v], 1.0, P.h), {&P.frames[v]}), nullptr, block);
     }
     std::vector<std::array<double, 4>> planes(P.faces.size());

@@ -13,7 +13,8 @@
 // iteration and calls PyErr_CheckSignals, so Ctrl-C in the interpreter stops the run within
 // one iteration and raises KeyboardInterrupt; an exception raised by the progress callback
 // stops it the same way and is re-raised. The pipeline keeps process-wide state (the stop
-// flag, the numeric thread count), so runs in one process are serialised by a mutex.
+// flag, the numeric thread count), so runs in one process are serialised by a mutex; runs
+// from several Python threads take turns.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -61,17 +62,30 @@ std::string OneLine(std::string message) {
   return message;
 }
 
-// What the GIL-free run and the Python side share while a run is on. Only touched with the GIL.
+// What the GIL-free run and the Python side share while a run is on. Its Python objects are
+// only touched with the GIL.
 struct RunContext {
   py::object progress;                     // None or a callable (stage, event, seconds)
   std::optional<py::error_already_set> error;  // raised by the callback or Ctrl-C
 };
-RunContext* g_context = nullptr;  // the run in progress (runs are serialised)
+// The run in progress on this thread. The poll and the progress callback are called on the
+// thread that runs the pipeline (before each stage, from Ceres' iteration callback), which
+// is the thread that called run(): thread-local, so another thread's run never sees it.
+thread_local RunContext* g_context = nullptr;
+
+// Sets g_context for its lifetime, and clears it however the run ends (a C++ exception too).
+class ContextScope {
+ public:
+  explicit ContextScope(RunContext* context) { g_context = context; }
+  ~ContextScope() { g_context = nullptr; }
+  ContextScope(const ContextScope&) = delete;
+  ContextScope& operator=(const ContextScope&) = delete;
+};
 
 // The stop poll: Ctrl-C pending in Python, or an exception already caught from the callback.
 int PollPython() {
+  if (g_context == nullptr) return 0;  // not a thread running a Python-started pipeline
   py::gil_scoped_acquire gil;
-  if (g_context == nullptr) return 0;
   if (g_context->error) return SIGINT;
   if (PyErr_CheckSignals() != 0) {
     g_context->error.emplace();  // fetches the KeyboardInterrupt (or the handler's exception)
@@ -81,8 +95,9 @@ int PollPython() {
 }
 
 void ReportProgress(const std::string& stage, const std::string& event, double seconds) {
+  if (g_context == nullptr) return;
   py::gil_scoped_acquire gil;
-  if (g_context == nullptr || g_context->progress.is_none() || g_context->error) return;
+  if (g_context->progress.is_none() || g_context->error) return;
   try {
     g_context->progress(stage, event, seconds);
   } catch (py::error_already_set& e) {
@@ -152,22 +167,17 @@ py::dict Run(const std::optional<std::string>& config_path, const std::optional<
   }
   options.progress = &ReportProgress;
   RunContext context{std::move(progress), std::nullopt};
+  const ContextScope scope(&context);  // cleared after the GIL is back, even if the run throws
   nlohmann::json report;
   PipelineState state;
   Status status;
   {
     py::gil_scoped_release release;
-    std::lock_guard<std::mutex> lock(one_run_at_a_time);
-    {
-      py::gil_scoped_acquire gil;
-      g_context = &context;
-    }
+    std::lock_guard<std::mutex> lock(one_run_at_a_time);  // process-wide: the stop flag, thread counts
     FLAGS_minloglevel = verbose ? google::GLOG_INFO : google::GLOG_WARNING;
     ClearInterrupt();
     status = RunPipeline(config, options, &report, &state);
     ClearInterrupt();
-    py::gil_scoped_acquire gil;
-    g_context = nullptr;
   }
   if (context.error) throw std::move(*context.error);  // Ctrl-C or the callback's exception
   if (!status.ok()) {

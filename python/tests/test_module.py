@@ -169,6 +169,19 @@ def test_stiffen_off_keeps_the_planarised_shell():
     assert r.report["stages"]["analyze"]["compliance_total"] > 0
 
 
+def test_stiffen_without_slide_keeps_vertices_on_their_normals():
+    """stiffen.slide = 0 (the boxes have no tangential width) used to fail in Ceres' bounds.
+    Whatever the optimiser reaches, the shell handed on keeps δ ≤ target (or is the planarised one)."""
+    config = {"surface": {"generator": "hypar", "edge_length": 2.0, "width": 20, "depth": 16, "rise": 3},
+              "layout": {"spacing": 3.0}}
+    r = pqlayout.run(config, set={"stiffen.slide": 0})
+    stiffen = r.report["stages"]["stiffen"]
+    assert stiffen["planarity_max"] <= 1e-3 and stiffen["compliance_ratio"] <= 1.0
+    if stiffen["kept_planarised"]:
+        assert np.array_equal(r.quads.vertices, r.quads_planarized.vertices)
+        assert stiffen["compliance_ratio"] == 1.0
+
+
 def test_bad_key_raises_config_error_naming_it():
     with pytest.raises(pqlayout.ConfigError, match="layout.spacnig"):
         pqlayout.run(GREAT_COURT, set={"layout.spacnig": 2.0})
@@ -201,6 +214,25 @@ def test_an_exception_in_the_callback_stops_the_run_and_is_raised(tmp_path):
     assert not (tmp_path / "stopped" / "report.json").exists()
     # The next run in the same process is not stopped by the last one's request.
     assert pqlayout.run(GREAT_COURT, until="guidance").report["run"]["completed_stages"][-1] == "guidance"
+
+
+def test_runs_from_two_threads_take_turns_and_agree():
+    import threading
+    config = {"surface": {"generator": "hypar", "edge_length": 2.0}, "layout": {"spacing": 4.0}}
+    alone = pqlayout.run(config, until="planarize")
+    results = [None, None]
+
+    def work(i):
+        results[i] = pqlayout.run(config, until="planarize")
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for r in results:
+        assert np.array_equal(r.quads.vertices, alone.quads.vertices)
+        assert r.quads.faces() == alone.quads.faces()
 
 
 def test_keys_and_version():
