@@ -1,0 +1,87 @@
+// Shared inside the level-set problem (problems/levelset_*.cc and stage_levelset.cc), not its
+// interface (that is problems/levelset.h): the per-face geometry, the initial guess, the Ceres
+// plumbing, the metrics and the solves, one file each.
+#pragma once
+
+#include <ceres/ceres.h>
+
+#include <array>
+#include <initializer_list>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <nlohmann/json.hpp>
+
+#include "problems/guidance.h"
+#include "problems/levelset.h"
+
+namespace pqlayout::levelset_internal {
+
+constexpr double kDegrees = 180.0 / M_PI;
+
+// Per-face data shared by every term, computed once.
+struct LevelSetGeometry {
+  std::vector<Eigen::Matrix3d> G;      // P1 basis gradients, columns in face_vertices order
+  std::vector<Eigen::Matrix3d> S;      // shape operators
+  std::vector<Eigen::Vector3d> centroid;
+  double flat_curvature = 0.0;         // μ: below this curvature, conjugacy becomes orthogonality
+};
+
+// An interior edge (i, j) between face f (third vertex k) and face g (third vertex l).
+struct InteriorEdge {
+  int i, j, k, l;
+  Eigen::Matrix3d Gf, Gg;  // basis gradients in the order (i, j, k) and (i, j, l)
+  double area, distance;
+};
+
+// Where the value of each vertex of the solve mesh lives for Ceres: its own parameter, or,
+// for the plus copy of a seam vertex, the minus copy's parameter through u₊ = s·u₋ + a
+// (solver/affine_mapped_cost.h), so the transitions hold exactly.
+struct Scalar {
+  int vertex;
+  double scale = 1.0, offset = 0.0;
+};
+struct Chart {
+  std::vector<double>* values;
+  std::vector<Scalar> map;  // per vertex; empty: every vertex is its own parameter
+  Scalar At(int v) const { return map.empty() ? Scalar{v} : map[v]; }
+};
+
+// levelset_geometry.cc
+LevelSetGeometry Precompute(const SurfaceModel& surface);
+Eigen::Vector3d Gradient(const LevelSetGeometry& geo, const SurfaceModel& s, int f, const std::vector<double>& u);
+Eigen::Matrix3d OrderedBasis(const LevelSetGeometry& geo, const SurfaceModel& s, int f, const std::array<int, 3>& order);
+std::vector<InteriorEdge> InteriorEdges(const SurfaceModel& s, const LevelSetGeometry& geo);
+
+// levelset_initial.cc
+std::vector<Eigen::Vector3d> OrientedCrossField(const SurfaceModel& s, const GuidanceField& g);
+Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target, const std::vector<double>& omega, std::vector<double>* u, LevelSetSeams* seams = nullptr, int family = 0, bool free_offsets = false, double h = 1.0);
+void RoundOffsets(const LevelSetSeams& seams, std::vector<double>* offsets);
+Status SeamedPoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target, const std::vector<double>& omega, double h, int family, LevelSetSeams* seams, std::vector<double>* u);
+std::vector<int> SeamSigns(const SeamCut& cut, const std::vector<Eigen::Vector3d>& oriented);
+void ProjectTransitions(const LevelSetSeams& seams, const std::vector<double>& offsets, std::vector<double>* u);
+void AddFaceForm(const Eigen::Vector3d& a, const std::array<int, 3>& ids, double scale, std::vector<Eigen::Triplet<double>>* t);
+Eigen::SparseMatrix<double> AlignmentSmoothnessForm(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g, const std::vector<InteriorEdge>& edges, double h, const LevelsetWeights& w);
+Status SmallestEigenvector(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g, const std::vector<InteriorEdge>& edges, double h, const LevelsetWeights& w, std::vector<double>* phi);
+std::vector<Eigen::Vector3d> ConjugateTargets(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<double>& phi, double h, double min_angle);
+
+// levelset_terms.cc
+Status Solve(const std::string& name, int max_iterations, ceres::Problem* problem, nlohmann::json* summary);
+ceres::LossFunction* Weight(double w);
+bool Live(const std::vector<char>* live, std::initializer_list<int> ids);
+void AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss, std::initializer_list<std::pair<const Chart*, Scalar>> args);
+void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, const Chart& u, ceres::Problem* problem, const std::vector<char>* live = nullptr);
+void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u, ceres::Problem* problem, const std::vector<char>* live = nullptr);
+
+// levelset_metrics.cc
+LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g, const std::vector<double>& phi, const std::vector<double>& psi, double min_angle_deg);
+
+// levelset_solve.cc
+Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams, LevelSetSolution* solution);
+GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceField& g, const SurfaceModel& working);
+Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSolution* solution);
+
+}  // namespace pqlayout::levelset_internal

@@ -1,0 +1,103 @@
+// Ceres plumbing of the level-set solves: one solve with its log, charts carrying the seam transitions, the smoothness and spacing terms.
+#include "problems/levelset_internal.h"
+
+#include <glog/logging.h>
+
+#include "problems/residuals/smoothness_residual.h"
+#include "problems/residuals/spacing_residual.h"
+#include "solver/affine_mapped_cost.h"
+#include "solver/ceres_options.h"
+
+namespace pqlayout {
+namespace levelset_internal {
+
+// ---- Ceres ---------------------------------------------------------------------------
+
+class ProgressLog : public ceres::IterationCallback {
+ public:
+  explicit ProgressLog(std::string name) : name_(std::move(name)) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
+    VLOG(1) << name_ << " iteration " << it.iteration << ": cost " << it.cost;
+    if (it.iteration > 0 && it.iteration % 25 == 0)
+      LOG(INFO) << "levelset: " << name_ << " iteration " << it.iteration << ", cost " << it.cost;
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  std::string name_;
+};
+
+nlohmann::json SummaryJson(const ceres::Solver::Summary& s) {
+  return {{"iterations", s.iterations.size() > 0 ? s.iterations.size() - 1 : 0},
+          {"initial_cost", s.initial_cost},
+          {"final_cost", s.final_cost},
+          {"termination", ceres::TerminationTypeToString(s.termination_type)},
+          {"seconds", s.total_time_in_seconds},
+          {"residual_blocks", s.num_residual_blocks},
+          {"message", s.message}};
+}
+
+Status Solve(const std::string& name, int max_iterations, ceres::Problem* problem, nlohmann::json* summary) {
+  ceres::Solver::Options options = SparseCholeskyOptions(max_iterations);
+  ProgressLog progress(name);
+  options.callbacks.push_back(&progress);
+  ceres::Solver::Summary result;
+  ceres::Solve(options, problem, &result);
+  *summary = SummaryJson(result);
+  VLOG(1) << "levelset: " << name << ":\n" << result.FullReport();
+  if (!result.IsSolutionUsable()) return Status::Internal("levelset: Ceres failed on " + name + ": " + result.message);
+  LOG(INFO) << "levelset: " << name << ": " << result.iterations.size() - 1 << " iterations, cost "
+            << result.initial_cost << " → " << result.final_cost << " ("
+            << ceres::TerminationTypeToString(result.termination_type) << ", " << result.total_time_in_seconds << " s)";
+  return Status::Ok();
+}
+
+ceres::LossFunction* Weight(double w) { return new ceres::ScaledLoss(nullptr, w, ceres::TAKE_OWNERSHIP); }
+
+// `live`: vertex mask; a term is added if it touches a live vertex (nullptr: all).
+bool Live(const std::vector<char>* live, std::initializer_list<int> ids) {
+  if (live == nullptr) return true;
+  for (const int v : ids)
+    if ((*live)[v]) return true;
+  return false;
+}
+
+
+// Adds `cost` over the given scalars (chart, vertex), through their maps.
+void AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss,
+               std::initializer_list<std::pair<const Chart*, Scalar>> args) {
+  std::vector<double*> blocks;
+  std::vector<double> scale, offset;
+  bool identity = true;
+  for (const auto& [chart, x] : args) {
+    blocks.push_back(&(*chart->values)[x.vertex]);
+    scale.push_back(x.scale);
+    offset.push_back(x.offset);
+    identity = identity && x.scale == 1.0 && x.offset == 0.0;
+  }
+  if (!identity) cost = new AffineMappedCost(cost, std::move(scale), std::move(offset));
+  problem->AddResidualBlock(cost, loss, blocks);
+}
+
+void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, const Chart& u, ceres::Problem* problem, const std::vector<char>* live) {
+  if (weight <= 0.0) return;
+  for (const auto& e : edges) {
+    if (!Live(live, {e.i, e.j, e.k, e.l})) continue;
+    AddMapped(problem, SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h), Weight(weight),
+              {{&u, u.At(e.i)}, {&u, u.At(e.j)}, {&u, u.At(e.k)}, {&u, u.At(e.l)}});
+  }
+}
+
+void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u, ceres::Problem* problem, const std::vector<char>* live) {
+  if (weight <= 0.0) return;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto ids = s.face_vertices(f);
+    if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
+    AddMapped(problem, SpacingResidual::Create(geo.G[f], s.face_area(f), h), Weight(weight),
+              {{&u, u.At(ids[0])}, {&u, u.At(ids[1])}, {&u, u.At(ids[2])}});
+  }
+}
+
+
+}  // namespace levelset_internal
+}  // namespace pqlayout
