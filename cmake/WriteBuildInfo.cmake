@@ -1,4 +1,5 @@
 # cmake -P script: generates build_info.cc (see GitRevision.cmake).
+cmake_policy(SET CMP0007 NEW)  # a list keeps its empty elements (a library without a version)
 execute_process(COMMAND git -C "${SOURCE_DIR}" rev-parse --short=12 HEAD
   OUTPUT_VARIABLE rev OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0 OR rev STREQUAL "")
