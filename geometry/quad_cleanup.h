@@ -1,0 +1,63 @@
+// The clean-up of an extracted polygon mesh (quad_extraction.h): short edges collapsed, idle
+// boundary vertices dropped, boundary triangle/pentagon pairs re-split into quads, boundary
+// corner triangles moved onto the boundary, interior 6/8-gons cut into quads. Internal to
+// the extraction (quad_extraction.cc); the counts it returns are ExtractionStats.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/quad_extraction.h"
+
+namespace pqlayout::extraction_internal {
+
+struct Polygons {
+  std::vector<Eigen::Vector3d> position;
+  std::vector<QuadMeshVertex> origin;
+  std::vector<std::vector<int>> faces;
+};
+
+inline constexpr double kMinResplitAngle = 20.0 * M_PI / 180.0;  // both quads: every angle in [20°, 160°]
+
+// One round of collapses of edges shorter than min_length, on disjoint neighbourhoods.
+int CollapseRound(double min_length, Polygons* m);
+
+// Drops vertices no face uses.
+void Compact(Polygons* m);
+
+// Boundary vertices that no interior edge reaches (valence 2, one face), are no corner and
+// lie on a straight piece of the boundary (a curve that touched the boundary and left it
+// again, or the end of a merged sliver) carry nothing: removed from their face.
+int DropIdleBoundaryVertices(Polygons* m);
+
+// Along a boundary crossed obliquely by both families the boundary cells alternate between
+// triangles and pentagons. A triangle and a pentagon sharing a curve segment that ends on the
+// boundary form a hexagon, which is re-split into two quads by the diagonal that gives the
+// best-shaped quads (every angle between 20° and 160° in the hexagon's plane): the last segment of that curve then
+// ends at the neighbouring boundary point. Returns the number of re-split pairs.
+int ResplitBoundaryTrianglePentagonPairs(Polygons* m);
+
+// Where two curves cross just inside the boundary, the corner they cut off is a boundary
+// triangle (A, B on the boundary, X the crossing) between two boundary cells of five or more
+// sides. Moving the crossing onto the boundary (X and B merged into A, or X and A into B,
+// whichever gives the better-shaped faces, every quad angle within [min_angle, 180° −
+// min_angle]) removes the triangle and makes both neighbours one side shorter: a triangle and
+// two pentagons become two quads. Boundary corners are never merged away.
+int CollapseBoundaryTriangles(double min_angle, Polygons* m);
+
+// Cells that are large polygons are cut into quads by the diagonals that give the
+// best-shaped quads, if every quad angle is within [min_angle, 180° − min_angle]:
+// - a cell that touches no boundary and has 6 or 8 sides (where the curves fan out around a
+//   singularity of the guidance): 2 or 3 quads; the singularity then becomes a vertex of
+//   valence 3 or 5, as in any quad mesh;
+// - a boundary cell of 6 to 10 sides (a level line that turned back near the boundary):
+//   quads, plus one triangle cut off at a boundary vertex if the number of sides is odd (so
+//   that every cell off the boundary stays a quad); no diagonal
+//   joins two boundary vertices. A large unbraced panel is both hard to make planar and
+//   the softest part of the frame.
+// Returns the number of interior and of boundary cells cut.
+std::pair<int, int> SplitLargePolygons(double min_angle, Polygons* m);
+
+}  // namespace pqlayout::extraction_internal
