@@ -43,14 +43,7 @@ std::string VersionText() {
   return text;
 }
 
-// The error as one line: a message that carries a library's multi-line text (Ceres lists
-// parameter blocks) is joined, so that stderr is always exactly one line.
-std::string OneLine(std::string message) {
-  for (char& c : message)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!message.empty() && message.back() == ' ') message.pop_back();
-  return message;
-}
+using pqlayout::OneLine;
 
 // A command stopped by SIGINT/SIGTERM says so in one line and exits with 128 + the signal
 // (130, 143), whatever failure the interrupt caused on its way out (geometry/interrupt.h).

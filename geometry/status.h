@@ -39,6 +39,15 @@ class [[nodiscard]] Status {
   std::string message_;
 };
 
+// A message as one line: a library's multi-line text (Ceres lists parameter blocks) joined,
+// trailing spaces dropped. The CLI's stderr line and the Python module's exceptions use it.
+inline std::string OneLine(std::string message) {
+  for (char& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  return message;
+}
+
 // Evaluates an expression returning Status and returns it from the caller if not ok.
 #define PQ_RETURN_IF_ERROR(expr)             \
   do {                                       \

@@ -55,13 +55,6 @@ struct RunError : Error {
   using Error::Error;
 };
 
-// One line, as the CLI prints it (a library's multi-line message joined).
-std::string OneLine(std::string message) {
-  for (char& c : message)
-    if (c == '\n' || c == '\r') c = ' ';
-  return message;
-}
-
 // What the GIL-free run and the Python side share while a run is on. Its Python objects are
 // only touched with the GIL.
 struct RunContext {
