@@ -21,14 +21,16 @@ void TangentBasis(const Eigen::Vector3d& n, Eigen::Vector3d* t1, Eigen::Vector3d
   *t2 = n.cross(*t1);
 }
 
-TangentEigen DecomposeOnTangentPlane(const Eigen::Matrix3d& tensor, const Eigen::Vector3d& n) {
+TangentEigen DecomposeOnTangentPlane(const Eigen::Matrix3d& tensor, const Eigen::Vector3d& n, int orientation) {
   Eigen::Vector3d t1, t2;
   TangentBasis(n, &t1, &t2);
   Eigen::Matrix2d m;
   m << t1.dot(tensor * t1), t1.dot(tensor * t2), t2.dot(tensor * t1), t2.dot(tensor * t2);
   m = 0.5 * (m + m.transpose()).eval();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m);
-  const int major = std::abs(eig.eigenvalues()[0]) > std::abs(eig.eigenvalues()[1]) ? 0 : 1;
+  const Eigen::Vector2d lambda = eig.eigenvalues();
+  const int major = orientation == 0 ? (std::abs(lambda[0]) > std::abs(lambda[1]) ? 0 : 1)
+                                     : (orientation * lambda[0] > orientation * lambda[1] ? 0 : 1);
   TangentEigen out;
   out.major = eig.eigenvalues()[major];
   out.minor = eig.eigenvalues()[1 - major];

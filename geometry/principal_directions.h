@@ -17,13 +17,18 @@ namespace pqlayout {
 Eigen::Matrix3d GreenLagrangeStrain(const Eigen::Vector3d& n, const Eigen::Vector3d& grad_vz);
 
 // Eigen-decomposition of a symmetric tensor restricted to the plane normal to n.
+// orientation 0: the major eigenvalue is the one of largest modulus (the paper's "absolute
+// maximum principal strain", §2.2: its direction turns by 90° where the two eigenvalues have
+// opposite signs and equal moduli). orientation ±1: the major eigenvalue is the larger of
+// orientation·λ (the signed ordering of principal curvatures κ1 ≥ κ2: continuous everywhere
+// but at umbilics, also where the mean curvature changes sign).
 struct TangentEigen {
-  double major = 0.0;  // eigenvalue of largest modulus (signed)
+  double major = 0.0;  // see orientation above (signed)
   double minor = 0.0;  // the other eigenvalue
   Eigen::Vector3d major_direction = Eigen::Vector3d::Zero();  // unit, tangent
   Eigen::Vector3d minor_direction = Eigen::Vector3d::Zero();
 };
-TangentEigen DecomposeOnTangentPlane(const Eigen::Matrix3d& tensor, const Eigen::Vector3d& n);
+TangentEigen DecomposeOnTangentPlane(const Eigen::Matrix3d& tensor, const Eigen::Vector3d& n, int orientation = 0);
 
 // Two unit vectors spanning the plane normal to n (right-handed with n).
 void TangentBasis(const Eigen::Vector3d& n, Eigen::Vector3d* t1, Eigen::Vector3d* t2);

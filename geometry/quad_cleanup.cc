@@ -183,6 +183,24 @@ void Compact(Polygons* m) {
   *m = std::move(compact);
 }
 
+int DropFloatingParts(Polygons* m) {
+  std::vector<int> parent(m->position.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& face : m->faces)
+    for (const int v : face) parent[find(v)] = find(face[0]);
+  std::vector<char> held(m->position.size(), 0);
+  for (size_t v = 0; v < m->position.size(); ++v)
+    if (m->origin[v].on_boundary) held[find(static_cast<int>(v))] = 1;
+  const size_t before = m->faces.size();
+  m->faces.erase(std::remove_if(m->faces.begin(), m->faces.end(), [&](const auto& face) { return !held[find(face[0])]; }),
+                 m->faces.end());
+  return static_cast<int>(before - m->faces.size());
+}
+
 // Boundary vertices that no interior edge reaches (valence 2, one face), are no corner and
 // lie on a straight piece of the boundary (a curve that touched the boundary and left it
 // again, or the end of a merged sliver) carry nothing: removed from their face.

@@ -27,6 +27,12 @@ int CollapseRound(double min_length, Polygons* m);
 // Drops vertices no face uses.
 void Compact(Polygons* m);
 
+// Parts of the mesh (faces connected through shared vertices) with no vertex on the reference
+// boundary float: where the level sets fold over, cells that are not discs are left out and
+// can ring an island of cells that no support can hold (a mechanism for the frame analysis).
+// Their faces are removed; returns how many.
+int DropFloatingParts(Polygons* m);
+
 // Boundary vertices that no interior edge reaches (valence 2, one face), are no corner and
 // lie on a straight piece of the boundary (a curve that touched the boundary and left it
 // again, or the end of a merged sliver) carry nothing: removed from their face.

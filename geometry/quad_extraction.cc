@@ -639,6 +639,7 @@ Status Extract(const SurfaceModel& surface, const SurfaceInfo& info, const std::
     std::tie(out->stats.split_interior_polygons, out->stats.split_boundary_polygons) =
         SplitLargePolygons(kMinResplitAngle, &polygons);
   }
+  out->stats.floating_faces = DropFloatingParts(&polygons);
   Compact(&polygons);
 
   PolyMesh& mesh = out->mesh;

@@ -66,6 +66,7 @@ struct ExtractionStats {
   int collapsed_boundary_triangles = 0;  // crossings just inside the boundary moved onto it
   int split_interior_polygons = 0;       // interior 6- and 8-gons cut into quads
   int split_boundary_polygons = 0;       // boundary 6- to 10-gons cut into quads (and a triangle)
+  int floating_faces = 0;  // faces of parts that touch no reference boundary (dropped: nothing holds them)
   int refined_boundary_edges = 0;        // boundary vertices inserted where a chord left a curved boundary
   int slid_boundary_vertices = 0;        // boundary vertices moved along the boundary to even out chords
   // Seams: piece edges on a seam with no piece of the corresponding cell on the other side

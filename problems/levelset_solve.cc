@@ -242,7 +242,15 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     PQ_RETURN_IF_ERROR(Solve("joint", options.joint_iterations, &joint_problem, &solution->solver["joint"]));
     project();
   }
-  // 4. Local re-solves for the crossing angle (see RaiseCrossings).
+  // 4. Local re-solves for the crossing angle (see RaiseCrossings). The best state (fewest
+  // fold-overs, then fewest faces below min_angle; the joint solve's counts too) is kept: where
+  // no crossing can be raised (closed level lines of φ around an index +1 singularity, which
+  // every ψ line must touch somewhere) the boosted weights grow ×4 per round and tear the
+  // solution apart (the wavy corpus roof: 23 → 66 fold-overs), while elsewhere a round that
+  // adds a fold-over is often undone by later ones (two_holes: ending the rounds at the first
+  // such round left 1 fold-over, running them all leaves 0).
+  LevelSetMetrics best = Measure(s, geo, g, phi, psi, options.min_angle);
+  std::vector<double> best_phi = phi, best_psi = psi;
   for (int round = 0; round < options.crossing_rounds; ++round) {
     std::vector<char> live_phi, live_psi;
     if (RaiseCrossings(s, geo, phi, psi, min_angle, &boost, &live_phi, &live_psi) == 0) break;
@@ -262,8 +270,16 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     const std::string name = "crossing_round_" + std::to_string(round + 1);
     PQ_RETURN_IF_ERROR(Solve(name, kCrossingIterations, &local, &solution->solver[name]));
     project();
+    const LevelSetMetrics now = Measure(s, geo, g, phi, psi, options.min_angle);
+    if (std::make_pair(now.foldovers, now.faces_below_min_angle) <=
+        std::make_pair(best.foldovers, best.faces_below_min_angle)) {
+      best = now;
+      best_phi = phi;
+      best_psi = psi;
+    }
   }
-
+  phi = best_phi;  // a round may pass through worse states (more faces below) on its way
+  psi = best_psi;
   solution->metrics = Measure(s, geo, g, phi, psi, options.min_angle);
   return Status::Ok();
 }
@@ -298,20 +314,36 @@ constexpr int kRemeshIterations = 3;
 constexpr double kCancelDistance = 2.0;  // × h: two ±½ singularities closer than this get no seam
 constexpr double kMinSeamWeight = 1.0;   // × h: a seam whose path has less weighted length is not cut
 
-// The tips of the seams: the guidance's singularities of index ±½, less the pairs closer
-// than kCancelDistance·h, closest first. Around such a pair the field turns by a whole turn
-// or none (opposite indices cancel: a wrinkle; equal ones make an index ±1, e.g. a centre
-// that the discrete field splits in two), so a single-valued φ can follow it there; two
-// seams would only add two branch points.
+// The tips of the seams: the guidance's singularities of index ±½, less pairs, closest
+// first: two closer than kCancelDistance·h, or two of the same sign in one connected weak zone
+// (faces with weight < 0.5). Around such a pair the field turns by a whole turn or none
+// (opposite indices cancel: a wrinkle; equal ones make an index ±1, e.g. a crown that the
+// nearly isotropic field there splits in two), so a single-valued φ crosses it; two seams
+// would only add two branch points (on the L-shaped corpus roof the two halves of the strain
+// crown, 2.3 h apart in its weak zone, made φ fan out of two branch points into 28 triangles).
 std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double h, int* cancelled) {
   std::vector<LineFieldSingularity> half;
   for (const auto& x : FindLineFieldSingularities(s, g.direction))
     if (std::abs(std::abs(x.index) - 0.5) < 1e-9) half.push_back(x);
+  // Weak zones: vertices joined through faces with weight < 0.5 (-1: on no such face).
+  std::vector<int> zone(s.num_vertices(), -1), parent(s.num_vertices());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (int f = 0; f < s.num_faces(); ++f) {
+    if (!(g.weight[f] < 0.5)) continue;
+    const auto ids = s.face_vertices(f);
+    for (const int v : ids) zone[v] = 0, parent[find(v)] = find(ids[0]);
+  }
+  const auto same_weak_zone = [&](int a, int b) { return zone[a] >= 0 && zone[b] >= 0 && find(a) == find(b); };
   std::vector<std::tuple<double, int, int>> candidates;
   for (size_t i = 0; i < half.size(); ++i)
     for (size_t j = i + 1; j < half.size(); ++j) {
       const double d = (half[i].position - half[j].position).norm();
-      if (d < kCancelDistance * h) candidates.emplace_back(d, i, j);
+      if (d < kCancelDistance * h || (half[i].index == half[j].index && same_weak_zone(half[i].vertex, half[j].vertex)))
+        candidates.emplace_back(d, i, j);
     }
   std::sort(candidates.begin(), candidates.end());
   std::vector<char> gone(half.size(), 0);

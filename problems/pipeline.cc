@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/interrupt.h"
+#include "problems/layout_targets.h"
 #include "problems/build_info.h"
 #include "problems/report_html.h"
 #include "problems/stages.h"
@@ -165,6 +166,8 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     LOG(INFO) << entry.name << ": done in " << metrics["seconds"].get<double>() << " s";
     if (options.progress) options.progress(entry.name, "done", metrics["seconds"].get<double>());
   }
+  (*report)["targets"] = EvaluateLayoutTargets(state, (*report)["stages"]);
+  if (!(*report)["targets"]["list"].empty()) LOG(INFO) << "targets: " << LayoutTargetsSummary((*report)["targets"]);
   (*report)["run"]["completed_stages"] = completed;
   (*report)["run"]["total_seconds"] = SecondsSince(run_start);
   (*report)["warnings"] = warnings.warnings();

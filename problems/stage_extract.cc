@@ -73,6 +73,7 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"slid_boundary_vertices", stats.slid_boundary_vertices},
           {"dropped_boundary_vertices", stats.dropped_boundary_vertices},
           {"regions_with_holes", stats.regions_with_holes},
+          {"floating_faces", stats.floating_faces},
           {"unmatched_seam_edges", stats.unmatched_seam_edges},
           {"seam_transition_mismatch", stats.seam_transition_mismatch},
           {"rejected_faces", stats.rejected_faces}};
@@ -135,9 +136,11 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
             << m.planarity_max << " mean " << m.planarity_mean << ", corners " << m.n_corner_vertices << "/"
             << m.n_reference_corners << ", " << quads.stats.collapsed_edges << " short edges merged, boundary within "
             << m.boundary_deviation_edges / h << " h (" << quads.stats.refined_boundary_edges << " boundary vertices added)";
-  if (quads.stats.rejected_faces > 0 || quads.stats.regions_with_holes > 0)
+  if (quads.stats.rejected_faces > 0 || quads.stats.regions_with_holes > 0 || quads.stats.floating_faces > 0)
     LOG(WARNING) << "extract: " << quads.stats.rejected_faces << " faces refused as non-manifold, "
-                 << quads.stats.regions_with_holes << " cells left out because they are not discs";
+                 << quads.stats.regions_with_holes << " cells left out because they are not discs, "
+                 << quads.stats.floating_faces << " faces dropped that no boundary holds (the level sets fold over: "
+                 << levelsets.metrics.foldovers << " fold-overs)";
   return WritePlanarityFigure(surface, quads.mesh, state->config.planarize.target_delta,
                               "Planarity δ of the extracted mesh (before planarisation)",
                               out->Path("figures/planarity_initial.svg"));

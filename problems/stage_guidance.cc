@@ -70,9 +70,16 @@ Status ComputeStrainGuidance(const SurfaceModel& surface, const std::vector<doub
 Status ComputeCurvatureGuidance(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field) {
   Resize(surface.num_faces(), field);
   const std::vector<Eigen::Matrix3d> shape = FaceShapeOperators(surface);
+  // κ1 ≥ κ2 ordered by sign, oriented by the area-weighted mean curvature: on a synclastic
+  // roof this is the direction of largest |κ| (as before), and where the mean curvature
+  // changes sign (a hypar, a wavy roof) the field stays continuous instead of turning by 90°
+  // along the lines κ1 = −κ2, which made spurious ±½ singularity pairs (70 on the hypar).
+  double mean_curvature = 0.0;
+  for (int f = 0; f < surface.num_faces(); ++f) mean_curvature += surface.face_area(f) * shape[f].trace();
+  const int orientation = mean_curvature < 0.0 ? -1 : 1;
   std::vector<double> curvature_sum(surface.num_faces());
   for (int f = 0; f < surface.num_faces(); ++f) {
-    const TangentEigen curvature = DecomposeOnTangentPlane(shape[f], surface.face_normal(f));
+    const TangentEigen curvature = DecomposeOnTangentPlane(shape[f], surface.face_normal(f), orientation);
     field->direction[f] = curvature.major_direction;
     field->major[f] = curvature.major;
     field->minor[f] = curvature.minor;

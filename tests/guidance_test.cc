@@ -94,6 +94,37 @@ TEST(CurvatureGuidance, CylinderFollowsTheCurvedDirection) {
   EXPECT_GT(high_weight, 0.95 * s.num_faces());
 }
 
+// The signed ordering κ1 ≥ κ2 (orientation ±1) against the paper's largest modulus (0).
+TEST(PrincipalDirections, OrientationChoosesTheSignedOrTheLargestEigenvalue) {
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+  const Eigen::Matrix3d t = Eigen::Vector3d(1.0, -2.0, 0.0).asDiagonal();
+  EXPECT_DOUBLE_EQ(DecomposeOnTangentPlane(t, n).major, -2.0);
+  EXPECT_DOUBLE_EQ(DecomposeOnTangentPlane(t, n, 1).major, 1.0);
+  EXPECT_DOUBLE_EQ(DecomposeOnTangentPlane(t, n, 1).minor, -2.0);
+  EXPECT_DOUBLE_EQ(DecomposeOnTangentPlane(t, n, -1).major, -2.0);
+  EXPECT_NEAR(std::abs(DecomposeOnTangentPlane(t, n, 1).major_direction.x()), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(DecomposeOnTangentPlane(t, n, -1).major_direction.y()), 1.0, 1e-12);
+}
+
+// A hyperbolic paraboloid z ∝ x y on a square has no umbilic: its curvature lines are the two
+// diagonals' families everywhere. With the largest-|κ| ordering the field turned by 90° along
+// the axes, where κ1 = −κ2, and the guidance had 70 spurious ±½ singularities.
+TEST(CurvatureGuidance, HyparIsDiagonalWithoutSingularities) {
+  const SurfaceModel s(Generate("hypar", 24.0, 24.0, 4.0, 0.6));
+  GuidanceField g;
+  ASSERT_TRUE(ComputeCurvatureGuidance(s, GuidanceOptions(), &g).ok());
+  EXPECT_TRUE(FindLineFieldSingularities(s, g.direction).empty());
+  double worst = 0.0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const Eigen::Vector3d d(g.direction[f].x(), g.direction[f].y(), 0.0);
+    const double from_diagonal = std::min(AngleBetweenLinesDeg(d, Eigen::Vector3d(1, 1, 0)),
+                                          AngleBetweenLinesDeg(d, Eigen::Vector3d(1, -1, 0)));
+    worst = std::max(worst, from_diagonal);
+  }
+  std::cout << "hypar: worst angle to a diagonal " << worst << "°\n";
+  EXPECT_LE(worst, 10.0);
+}
+
 TEST(CurvatureGuidance, SphereHasNoPreferredDirection) {
   // A spherical cap of radius 10 over the disk of radius 6.
   TriMesh mesh = Generate("disk", 12.0, 0.0, 0.0, 0.3);

@@ -10,6 +10,7 @@
 
 #include "geometry/boundary_refinement.h"
 #include "geometry/planarity.h"
+#include "geometry/quad_cleanup.h"
 #include "geometry/quad_extraction.h"
 #include "problems/guidance.h"
 #include "problems/levelset.h"
@@ -440,4 +441,28 @@ TEST(QuadExtraction, TiesAndCriticalPointsStayAManifoldDisk) {
 }
 
 }  // namespace
+}  // namespace pqlayout
+
+namespace pqlayout {
+
+// A part of the extracted mesh that touches no reference boundary (an island ringed by cells
+// left out where the level sets fold over) is dropped; a part joined to the boundary through
+// interior faces stays.
+TEST(QuadCleanup, DropsOnlyPartsThatTouchNoBoundary) {
+  extraction_internal::Polygons m;
+  for (int v = 0; v < 10; ++v) {
+    m.position.emplace_back(v, v % 3, 0.0);
+    m.origin.push_back(QuadMeshVertex());
+  }
+  m.origin[0].on_boundary = true;
+  m.faces = {{0, 1, 2, 3}, {2, 3, 4, 5}, {6, 7, 8, 9}};
+  EXPECT_EQ(extraction_internal::DropFloatingParts(&m), 1);
+  ASSERT_EQ(m.faces.size(), 2u);
+  EXPECT_EQ(m.faces[0], (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(m.faces[1], (std::vector<int>{2, 3, 4, 5}));
+  m.origin[0].on_boundary = false;  // nothing holds the rest either
+  EXPECT_EQ(extraction_internal::DropFloatingParts(&m), 2);
+  EXPECT_TRUE(m.faces.empty());
+}
+
 }  // namespace pqlayout

@@ -1,0 +1,95 @@
+// The roof corpus (issue 17; examples/corpus, benchmarks/corpus.md): every roof through
+// planarisation with both guidance sources, defaults only, each layout target of
+// report.json "targets" (problems/layout_targets.h) either met or a miss known today, which
+// must keep its one-line cause and may not get worse than its bound (the value measured on
+// 2026-12-02 with a margin: 25 % for angles, CVs and areas, 0.05 for the quad fraction,
+// 1.5× + 1 for counts). A regression on any roof turns this red; a fix lets a miss be struck
+// from the list. wavy × curvature (9 misses, 45–70 s: closed level lines around three bump
+// tops, see corpus.md) is left to benchmarks/corpus.sh.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "problems/config.h"
+#include "problems/pipeline.h"
+
+namespace pqlayout {
+namespace {
+
+struct CorpusCase {
+  friend void PrintTo(const CorpusCase& c, std::ostream* os) { *os << c.roof << "_" << c.source; }
+  std::string roof, source;
+  std::map<std::string, double> known_misses;  // target → bound on its value
+};
+
+const CorpusCase kCases[] = {
+    {"barrel", "strain", {}},
+    {"barrel", "curvature", {}},
+    {"canopy", "strain", {{"quad_fraction", 0.72}, {"interior_non_quads", 3}}},
+    {"canopy", "curvature", {}},
+    {"dome_circular", "strain", {{"alignment", 13.5}, {"spacing_cv", 0.334}, {"quad_fraction", 0.67}}},
+    {"dome_circular", "curvature", {{"quad_fraction", 0.74}}},
+    {"dome_square", "strain", {{"alignment", 18.5}, {"spacing_cv", 0.355}}},
+    {"dome_square", "curvature", {}},
+    {"hole_offcentre", "strain",
+     {{"alignment", 17.8}, {"min_crossing", 7.7}, {"spacing_cv", 0.539}, {"interior_non_quads", 3}, {"edge_min_h", 0.094}}},
+    {"hole_offcentre", "curvature",
+     {{"alignment", 20.5}, {"min_crossing", 4.5}, {"area_below_30", 0.061}, {"quad_fraction", 0.70},
+      {"interior_non_quads", 4}, {"edge_min_h", 0.086}}},
+    {"hypar", "strain", {{"alignment", 17.0}, {"min_crossing", 7.6}, {"quad_fraction", 0.72}}},
+    {"hypar", "curvature", {}},
+    {"l_shape", "strain", {{"alignment", 13.7}}},
+    {"l_shape", "curvature", {}},
+    {"saddle_elliptic", "strain", {{"alignment", 11.3}, {"quad_fraction", 0.70}}},
+    {"saddle_elliptic", "curvature", {}},
+    {"two_holes", "strain", {{"alignment", 10.1}, {"min_crossing", 10.3}, {"quad_fraction", 0.65}, {"edge_min_h", 0.061}}},
+    {"two_holes", "curvature", {{"quad_fraction", 0.71}, {"edge_min_h", 0.060}}},
+    {"wavy", "strain",
+     {{"alignment", 20.8}, {"min_crossing", 14.1}, {"area_below_30", 0.354}, {"quad_fraction", 0.72},
+      {"interior_non_quads", 4}}},
+};
+
+class CorpusTargets : public ::testing::TestWithParam<CorpusCase> {};
+
+TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
+  const CorpusCase& c = GetParam();
+  Config config;
+  ASSERT_TRUE(LoadConfig(PQLAYOUT_SOURCE_DIR "/examples/corpus/" + c.roof + ".yaml", {"guidance.source=" + c.source},
+                         &config)
+                  .ok());
+  RunOptions run;
+  run.out_dir = testing::TempDir() + "/corpus_" + c.roof + "_" + c.source;
+  run.until = Stage::kPlanarize;
+  run.commit = false;
+  nlohmann::json report;
+  ASSERT_TRUE(RunPipeline(config, run, &report).ok());
+  const nlohmann::json& targets = report.at("targets");
+  ASSERT_EQ(targets.at("list").size(), 11u);
+  int met = 0;
+  for (const auto& t : targets.at("list")) {
+    const std::string name = t.at("name");
+    met += t.at("met").get<bool>();
+    const auto known = c.known_misses.find(name);
+    if (known == c.known_misses.end()) {
+      EXPECT_TRUE(t.at("met").get<bool>()) << name << " = " << t.at("value") << ": " << t.value("cause", "");
+      continue;
+    }
+    if (t.at("met").get<bool>()) continue;  // fixed: strike it from kCases
+    EXPECT_GT(t.at("cause").get<std::string>().size(), 20u) << name;
+    const double value = t.at("value").get<double>();
+    const bool at_least = name == "min_crossing" || name == "quad_fraction" || name == "edge_min_h";
+    if (at_least) EXPECT_GE(value, known->second) << name;
+    else EXPECT_LE(value, known->second) << name;
+  }
+  EXPECT_EQ(met, targets.at("met").get<int>());
+  std::cout << c.roof << " × " << c.source << ": " << met << " of 11 targets met\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Roofs, CorpusTargets, ::testing::ValuesIn(kCases),
+                         [](const auto& info) { return info.param.roof + "_" + info.param.source; });
+
+}  // namespace
+}  // namespace pqlayout
