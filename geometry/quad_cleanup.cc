@@ -89,66 +89,86 @@ double CutScore(const Polygons& m, const std::vector<int>& face, const std::vect
 }  // namespace
 
 
+namespace {
+
+// The adjacency CollapseRound and CollapseBlocker read.
+struct Adjacency {
+  std::vector<std::vector<int>> faces_of;
+  std::vector<std::set<int>> neighbours;
+  std::map<std::pair<int, int>, int> edge_faces;  // (min, max) → faces on the edge
+  std::vector<char> topological_boundary;
+  explicit Adjacency(const Polygons& m) : faces_of(m.position.size()), neighbours(m.position.size()),
+                                          topological_boundary(m.position.size(), 0) {
+    for (size_t f = 0; f < m.faces.size(); ++f) {
+      const auto& face = m.faces[f];
+      for (size_t k = 0; k < face.size(); ++k) {
+        const int a = face[k], b = face[(k + 1) % face.size()];
+        faces_of[a].push_back(int(f));
+        neighbours[a].insert(b);
+        neighbours[b].insert(a);
+        ++edge_faces[{std::min(a, b), std::max(a, b)}];
+      }
+    }
+    for (const auto& [e, count] : edge_faces)
+      if (count == 1) topological_boundary[e.first] = topological_boundary[e.second] = 1;
+  }
+};
+
+int Rank(const Polygons& m, int v) { return m.origin[v].corner ? 2 : (m.origin[v].on_boundary ? 1 : 0); }
+
+const char* Blocker(const Polygons& m, const Adjacency& adj, int u, int v) {
+  const std::pair<int, int> e{std::min(u, v), std::max(u, v)};
+  const auto found = adj.edge_faces.find(e);
+  if (found == adj.edge_faces.end()) return "not an edge";
+  if (Rank(m, u) == 2 && Rank(m, v) == 2) return "both ends are boundary corners";
+  const bool boundary_edge = found->second == 1;
+  if (adj.topological_boundary[u] && adj.topological_boundary[v] && !boundary_edge)
+    return "both ends are on the mesh boundary but the edge is not (it would pinch the mesh)";
+  if (Rank(m, u) >= 1 && Rank(m, v) >= 1 && !boundary_edge)
+    return "both ends are on the reference boundary but the edge crosses the surface (a chord)";
+  // Link condition: common neighbours only through triangles on the edge.
+  std::set<int> allowed;
+  for (const int f : adj.faces_of[u]) {
+    const auto& face = m.faces[f];
+    if (std::find(face.begin(), face.end(), v) == face.end()) continue;
+    if (!CyclicallyAdjacent(face, u, v)) return "its ends also meet across a face";
+    if (face.size() == 3)
+      for (const int w : face)
+        if (w != u && w != v) allowed.insert(w);
+  }
+  for (const int w : adj.neighbours[u])
+    if (w != v && adj.neighbours[v].count(w) && !allowed.count(w))
+      return "its ends share a neighbour (the collapse would make the mesh non-manifold)";
+  return nullptr;
+}
+
+}  // namespace
+
+const char* CollapseBlocker(const Polygons& m, int u, int v) { return Blocker(m, Adjacency(m), u, v); }
+
 // One round of collapses of edges shorter than min_length, on disjoint neighbourhoods.
 int CollapseRound(double min_length, Polygons* m) {
-  const int nv = static_cast<int>(m->position.size());
-  std::vector<std::vector<int>> faces_of(nv);
-  std::vector<std::set<int>> neighbours(nv);
-  std::map<std::pair<int, int>, int> edge_faces;
-  for (size_t f = 0; f < m->faces.size(); ++f) {
-    const auto& face = m->faces[f];
-    for (size_t k = 0; k < face.size(); ++k) {
-      const int a = face[k], b = face[(k + 1) % face.size()];
-      faces_of[a].push_back(int(f));
-      neighbours[a].insert(b);
-      neighbours[b].insert(a);
-      ++edge_faces[{std::min(a, b), std::max(a, b)}];
-    }
-  }
-  std::vector<char> topological_boundary(nv, 0);
-  for (const auto& [e, count] : edge_faces)
-    if (count == 1) topological_boundary[e.first] = topological_boundary[e.second] = 1;
+  const Adjacency adj(*m);
   std::vector<std::pair<double, std::pair<int, int>>> short_edges;
-  for (const auto& [e, count] : edge_faces) {
+  for (const auto& [e, count] : adj.edge_faces) {
     const double length = (m->position[e.first] - m->position[e.second]).norm();
     if (length < min_length) short_edges.push_back({length, e});
   }
   std::sort(short_edges.begin(), short_edges.end());
   std::vector<char> touched(m->faces.size(), 0);
-  std::vector<int> target(nv);
+  std::vector<int> target(m->position.size());
   std::iota(target.begin(), target.end(), 0);
   int collapsed = 0;
-  const auto rank = [&](int v) { return m->origin[v].corner ? 2 : (m->origin[v].on_boundary ? 1 : 0); };
   for (const auto& [length, e] : short_edges) {
     auto [u, v] = e;
     bool free = true;
-    for (const int f : faces_of[u]) free &= !touched[f];
-    for (const int f : faces_of[v]) free &= !touched[f];
-    if (!free) continue;
-    if (rank(u) == 2 && rank(v) == 2) continue;
-    const bool boundary_edge = edge_faces[e] == 1;
-    if (topological_boundary[u] && topological_boundary[v] && !boundary_edge) continue;
-    if (rank(u) >= 1 && rank(v) >= 1 && !boundary_edge) continue;
-    // Link condition: common neighbours only through triangles on the edge.
-    std::set<int> allowed;
-    bool adjacent_everywhere = true;
-    for (const int f : faces_of[u]) {
-      const auto& face = m->faces[f];
-      if (std::find(face.begin(), face.end(), v) == face.end()) continue;
-      adjacent_everywhere &= CyclicallyAdjacent(face, u, v);
-      if (face.size() == 3)
-        for (const int w : face)
-          if (w != u && w != v) allowed.insert(w);
-    }
-    if (!adjacent_everywhere) continue;
-    bool link_ok = true;
-    for (const int w : neighbours[u])
-      if (w != v && neighbours[v].count(w) && !allowed.count(w)) link_ok = false;
-    if (!link_ok) continue;
-    if (rank(v) > rank(u)) std::swap(u, v);  // keep u
+    for (const int f : adj.faces_of[u]) free &= !touched[f];
+    for (const int f : adj.faces_of[v]) free &= !touched[f];
+    if (!free || Blocker(*m, adj, u, v)) continue;
+    if (Rank(*m, v) > Rank(*m, u)) std::swap(u, v);  // keep u
     target[v] = u;
-    for (const int f : faces_of[u]) touched[f] = 1;
-    for (const int f : faces_of[v]) touched[f] = 1;
+    for (const int f : adj.faces_of[u]) touched[f] = 1;
+    for (const int f : adj.faces_of[v]) touched[f] = 1;
     ++collapsed;
   }
   if (collapsed == 0) return 0;

@@ -24,6 +24,9 @@ inline constexpr double kMinResplitAngle = 20.0 * M_PI / 180.0;  // both quads: 
 // One round of collapses of edges shorter than min_length, on disjoint neighbourhoods.
 int CollapseRound(double min_length, Polygons* m);
 
+// Why CollapseRound will not collapse edge (u, v) (a sentence), or null if it would.
+const char* CollapseBlocker(const Polygons& m, int u, int v);
+
 // Drops vertices no face uses.
 void Compact(Polygons* m);
 

@@ -133,6 +133,11 @@ struct ExtractedMeshMetrics {
   std::vector<std::pair<int, Eigen::Vector3d>> interior_non_quads;
 };
 
+// Why the extraction's short-edge collapse would not merge the ends of mesh edge (u, v) (a
+// sentence), or null if it would (the edge was made after the collapses, by the boundary
+// clean-up or the chord refinement).
+const char* ShortEdgeBlocker(const ExtractedMesh& extracted, int u, int v);
+
 ExtractedMeshMetrics MeasureExtractedMesh(const SurfaceModel& surface, const ExtractedMesh& extracted,
                                           double corner_angle_deg);
 

@@ -2,6 +2,8 @@
 // boundary deviation and corners of an extracted mesh.
 #include "geometry/quad_extraction.h"
 
+#include "geometry/quad_cleanup.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -80,6 +82,18 @@ ExtractedMeshMetrics MeasureExtractedMesh(const SurfaceModel& surface, const Ext
       }
   }
   return m;
+}
+
+const char* ShortEdgeBlocker(const ExtractedMesh& extracted, int u, int v) {
+  extraction_internal::Polygons polygons;
+  for (const auto vh : extracted.mesh.vertices()) polygons.position.push_back(ToEigen(extracted.mesh.point(vh)));
+  polygons.origin = extracted.origin;
+  for (const auto f : extracted.mesh.faces()) {
+    std::vector<int> face;
+    for (const auto vh : extracted.mesh.fv_range(f)) face.push_back(vh.idx());
+    polygons.faces.push_back(std::move(face));
+  }
+  return extraction_internal::CollapseBlocker(polygons, u, v);
 }
 
 }  // namespace pqlayout

@@ -98,6 +98,8 @@ class Surroundings {
     return out;
   }
 
+  ReferenceBoundary::Location Locate(const Eigen::Vector3d& p) const { return boundary_.Locate(p); }
+
   // Whole turns of the guidance: clusters of singularities (each within 2 h of another) whose
   // indices add up to +1 or more (a crown, a bump top; the discrete field often splits one
   // into two +½, or dresses it with ±½ pairs).
@@ -222,13 +224,28 @@ std::string ExtractCause(const std::string& name, const PipelineState& state, co
   if (name == "edge_min_h") {
     double shortest = 1e300;
     Eigen::Vector3d where = Eigen::Vector3d::Zero();
+    int u = -1, v = -1;
     for (const auto e : mesh.edges()) {
       const auto he = mesh.halfedge_handle(e, 0);
-      const Eigen::Vector3d a = ToEigen(mesh.point(mesh.from_vertex_handle(he))), b = ToEigen(mesh.point(mesh.to_vertex_handle(he)));
-      if ((a - b).norm() < shortest) shortest = (a - b).norm(), where = 0.5 * (a + b);
+      const auto a = mesh.from_vertex_handle(he), b = mesh.to_vertex_handle(he);
+      const double length = (ToEigen(mesh.point(a)) - ToEigen(mesh.point(b))).norm();
+      if (length < shortest) shortest = length, where = 0.5 * ToEigen(mesh.point(a) + mesh.point(b)), u = a.idx(), v = b.idx();
     }
-    return "the shortest edge (" + Fixed(shortest / h, 2) + " h) is " + around.Describe(where) +
-           " (short edges are collapsed only where boundary points stay on the boundary and corners stay)";
+    const char* blocker = u >= 0 ? ShortEdgeBlocker(state.quads, u, v) : nullptr;
+    std::string why = blocker ? std::string("not collapsed because ") + blocker
+                              : "made after the short-edge collapses, by the boundary clean-up or the chord refinement";
+    const ReferenceBoundary::Location at = around.Locate(where);
+    if (!blocker && at.distance < 0.5 * h) {
+      // A boundary loop of length ℓ curves with radius ~ℓ/2π if round; a chord of length L stands
+      // L²/8R off it, so chords stay within the tolerance t only if L ≤ √(8 R t).
+      const double radius = state.surface->boundary_loops()[at.loop].length / (2.0 * M_PI);
+      const double chord = std::sqrt(8.0 * radius * state.config.extract.boundary_tolerance * h);
+      if (chord < 1.5 * h)
+        why += ": a loop " + Fixed(radius / h, 1) + " h in radius if round keeps chords within " +
+               Fixed(state.config.extract.boundary_tolerance, 2) + " h only if they are shorter than " + Fixed(chord / h, 2) +
+               " h, so vertices are inserted between the level lines' ends, some close to one";
+    }
+    return "the shortest edge (" + Fixed(shortest / h, 2) + " h) is " + around.Describe(where) + ": " + why;
   }
   // boundary_deviation_h
   return stats.regions_with_holes > 0 ? std::to_string(stats.regions_with_holes) + " cells left out (not discs: the level sets fold over) open a gap at the boundary"

@@ -465,4 +465,24 @@ TEST(QuadCleanup, DropsOnlyPartsThatTouchNoBoundary) {
   EXPECT_TRUE(m.faces.empty());
 }
 
+// The collapse's refusals, named: on a 3 × 3 grid of quads the interior edge (5, 6) may
+// collapse; as a chord between two reference-boundary points, or between two corners, not.
+TEST(QuadCleanup, CollapseBlockerNamesWhyAnEdgeStays) {
+  extraction_internal::Polygons m;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      m.position.emplace_back(i, j, 0.0);
+      m.origin.push_back(QuadMeshVertex());
+    }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) m.faces.push_back({4 * j + i, 4 * j + i + 1, 4 * j + i + 5, 4 * j + i + 4});
+  EXPECT_EQ(extraction_internal::CollapseBlocker(m, 5, 6), nullptr);
+  EXPECT_STREQ(extraction_internal::CollapseBlocker(m, 0, 5), "not an edge");
+  EXPECT_EQ(extraction_internal::CollapseBlocker(m, 1, 5), nullptr);  // 5 moves onto the boundary point 1
+  m.origin[5].on_boundary = m.origin[6].on_boundary = true;
+  EXPECT_NE(std::string(extraction_internal::CollapseBlocker(m, 5, 6)).find("chord"), std::string::npos);
+  m.origin[0].corner = m.origin[1].corner = true;
+  EXPECT_STREQ(extraction_internal::CollapseBlocker(m, 0, 1), "both ends are boundary corners");
+}
+
 }  // namespace pqlayout
