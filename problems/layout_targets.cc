@@ -175,12 +175,12 @@ std::string LevelSetCause(const std::string& name, const PipelineState& state, c
            around.Describe(m.centroid[hi]) + WholeTurnNote(around);
   }
   // min_crossing, area_below_30, foldovers: the sharpest crossing.
+  // Counts as the stage measured them (on the mesh it solved on); the place from the faces here.
   const int w = Worst(m.crossing, false);
-  int below = 0, folded = 0;
-  for (const double c : m.crossing) below += c < state.config.levelset.min_angle, folded += c <= 0.0;
-  return std::to_string(below) + " faces cross below " + Fixed(state.config.levelset.min_angle, 0) + "° (" +
-         std::to_string(folded) + " folded over), the sharpest (" + Fixed(m.crossing[w], 1) + "°) " +
-         around.Describe(m.centroid[w]) + WholeTurnNote(around);
+  const LevelSetMetrics& lm = state.levelsets.metrics;
+  return std::to_string(lm.faces_below_min_angle) + " faces cross below " + Fixed(state.config.levelset.min_angle, 0) +
+         "° (" + std::to_string(lm.foldovers) + " folded over), the sharpest " + around.Describe(m.centroid[w]) +
+         WholeTurnNote(around);
 }
 
 std::string ExtractCause(const std::string& name, const PipelineState& state, const Surroundings& around) {
@@ -213,10 +213,14 @@ std::string ExtractCause(const std::string& name, const PipelineState& state, co
       return first + (stats.regions_with_holes > 0 ? "; " + std::to_string(stats.regions_with_holes) +
                                                          " cells were left out (not discs: the level sets fold over)"
                                                    : "");
+    const std::string refined =
+        stats.refined_boundary_edges > 0
+            ? "; " + std::to_string(stats.refined_boundary_edges) + " vertices were added to keep chords within " +
+                  Fixed(state.config.extract.boundary_tolerance, 2) +
+                  " h of a curved boundary, each cutting off a triangle so that no panel has three vertices on it"
+            : ", where level lines meet the boundary obliquely";
     return std::to_string(boundary_triangles + boundary_other) + " of the " + std::to_string(boundary_triangles + boundary_other + inner) +
-           " non-quads touch the boundary (" + std::to_string(boundary_triangles) + " triangles; " +
-           std::to_string(stats.refined_boundary_edges) + " vertices were added to keep chords within " +
-           Fixed(state.config.extract.boundary_tolerance, 2) + " h of a curved boundary, each cutting off a triangle so that no panel has three vertices on it)" +
+           " non-quads touch the boundary (" + std::to_string(boundary_triangles) + " triangles" + refined + ")" +
            ", and " + std::to_string(boundary_faces) + " of " + std::to_string(mesh.n_faces()) +
            " panels touch the boundary: the boundary row weighs " + Fixed(100.0 * boundary_faces / std::max<size_t>(1, mesh.n_faces()), 0) +
            " % on a roof " + Fixed(std::sqrt(state.surface->total_area()) / h, 0) + " panels across";

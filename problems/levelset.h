@@ -56,7 +56,7 @@ struct LevelSetSeams {
   std::vector<int> sign;                    // per path, shared by φ and ψ
   std::vector<double> phi_offset, psi_offset;  // per path, integers
   std::vector<int> tips;                    // original vertices where a seam ends inside (branch points)
-  int cancelled_pairs = 0;                  // pairs of ±½ singularities closer than the cancel distance (no seam)
+  int cancelled_pairs = 0;                  // pairs of ±½ singularities cancelled (close, or same sign in one weak zone: no seam)
   int light_paths = 0;                      // routes with too little weighted length to be worth a seam
   int orientable_tips = 0;                  // singularities the guidance does not flip around on the cut surface
   nlohmann::json ToJson() const;
