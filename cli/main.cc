@@ -2,7 +2,7 @@
 // `compare`, `sweep`, `collect` and `keys` (the config reference). Exit codes: 0 success,
 // 2 bad input or config (one line on stderr naming the file, key or element), 1 internal
 // failure (sweep: 1 also when a run failed), 130/143 after SIGINT/SIGTERM (run, compare and
-// sweep stop cleanly; see geometry/interrupt.h). Progress lines with elapsed time go to stdout.
+// sweep stop cleanly; see base/interrupt.h). Progress lines with elapsed time go to stdout.
 #include <CLI/CLI.hpp>
 #include <glog/logging.h>
 
@@ -12,8 +12,8 @@
 #include <iostream>
 #include <new>
 
-#include "geometry/atomic_file.h"
-#include "geometry/interrupt.h"
+#include "base/atomic_file.h"
+#include "base/interrupt.h"
 #include "problems/build_info.h"
 #include "problems/compare.h"
 #include "problems/config.h"
@@ -46,7 +46,7 @@ std::string VersionText() {
 using pqlayout::OneLine;
 
 // A command stopped by SIGINT/SIGTERM says so in one line and exits with 128 + the signal
-// (130, 143), whatever failure the interrupt caused on its way out (geometry/interrupt.h).
+// (130, 143), whatever failure the interrupt caused on its way out (base/interrupt.h).
 int ExitCode(const Status& status) {
   if (status.ok()) return 0;
   if (const int signal = pqlayout::InterruptSignal()) {

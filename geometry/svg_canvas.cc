@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "geometry/atomic_file.h"
+#include "base/atomic_file.h"
 
 namespace pqlayout {
 namespace {

@@ -15,7 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

@@ -9,7 +9,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "geometry/interrupt.h"
+#include "base/interrupt.h"
 
 extern char** environ;
 

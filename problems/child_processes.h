@@ -1,5 +1,5 @@
 // The runs of `pqlayout sweep` as child processes: started and waited for by the sweep's
-// worker threads, and stopped with the sweep. After SIGINT or SIGTERM (geometry/interrupt.h)
+// worker threads, and stopped with the sweep. After SIGINT or SIGTERM (base/interrupt.h)
 // the thread that waits for the workers calls ForwardInterrupt: every run in progress gets
 // the same signal, exactly once, and no new run starts; the workers then wait for their runs
 // to finish winding down, so an interrupted sweep leaves no orphans. Runs stay in the sweep's

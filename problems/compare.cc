@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/atomic_file.h"
+#include "base/atomic_file.h"
 #include "geometry/mesh_io.h"
 #include "problems/figures.h"
 #include "problems/config.h"

@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

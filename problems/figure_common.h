@@ -10,7 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "geometry/mesh.h"
-#include "geometry/status.h"
+#include "base/status.h"
 #include "geometry/surface_model.h"
 #include "geometry/svg_canvas.h"
 

@@ -29,7 +29,7 @@
 #include <Eigen/Core>
 
 #include "geometry/mesh.h"
-#include "geometry/status.h"
+#include "base/status.h"
 #include "geometry/seams.h"
 #include "geometry/surface_model.h"
 #include "geometry/svg_canvas.h"

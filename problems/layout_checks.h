@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "geometry/status.h"
+#include "base/status.h"
 #include "geometry/surface_model.h"
 #include "problems/config.h"
 

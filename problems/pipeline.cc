@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/interrupt.h"
+#include "base/interrupt.h"
 #include "problems/build_info.h"
 #include "problems/report_html.h"
 #include "problems/stages.h"

@@ -18,7 +18,7 @@
 #include "problems/config.h"
 #include "problems/guidance.h"
 #include "problems/levelset.h"
-#include "problems/output_files.h"
+#include "base/output_files.h"
 
 namespace pqlayout {
 

@@ -32,7 +32,7 @@
 #include "geometry/quad_extraction.h"
 #include "geometry/surface_model.h"
 #include "problems/config.h"
-#include "problems/output_files.h"
+#include "base/output_files.h"
 
 namespace pqlayout {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/atomic_file.h"
+#include "base/atomic_file.h"
 #include "problems/report_view3d.h"
 
 namespace pqlayout {

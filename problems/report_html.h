@@ -19,7 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "problems/output_files.h"
+#include "base/output_files.h"
 #include "problems/report_view3d.h"
 
 namespace pqlayout {

@@ -18,7 +18,7 @@
 
 #include "problems/config.h"
 #include "problems/grid_frame.h"
-#include "problems/output_files.h"
+#include "base/output_files.h"
 #include "solver/frame_buckling.h"
 
 namespace pqlayout {

@@ -18,8 +18,8 @@
 #include <sstream>
 #include <thread>
 
-#include "geometry/atomic_file.h"
-#include "geometry/interrupt.h"
+#include "base/atomic_file.h"
+#include "base/interrupt.h"
 #include "problems/child_processes.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"

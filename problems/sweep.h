@@ -21,7 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 
@@ -72,7 +72,7 @@ Status ReadSweepManifest(const std::string& dir, SweepPlan* plan);
 enum class RunState { kPending, kFinished, kFailed };
 // kFinished: runs/<name>/report.json exists and holds this run's config and `until` (a run
 // moves its report.json in last, so a run killed while its outputs were moved in is never
-// finished: problems/output_files.h); kFailed: otherwise, runs/<name>/error.txt exists
+// finished: base/output_files.h); kFailed: otherwise, runs/<name>/error.txt exists
 // (*error receives its line); else kPending.
 RunState InspectRun(const SweepPlan& plan, const SweepRun& run, std::string* error = nullptr);
 
@@ -89,7 +89,7 @@ struct SweepSummary {
 // Runs every run that is not finished (failed runs are retried), `jobs` at a time, each as
 // a child process `executable run ...` whose output goes to runs/<name>/run.log; logs one
 // progress line per finished run; then collects (CollectSweep). After SIGINT/SIGTERM
-// (geometry/interrupt.h; the caller installs the handlers) it forwards the signal to the runs
+// (base/interrupt.h; the caller installs the handlers) it forwards the signal to the runs
 // in progress, starts no more, waits for them and returns the interrupt's status without
 // collecting; an interrupted run writes no error.txt (it is left as it was) and runs again
 // on resume.

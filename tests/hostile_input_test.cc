@@ -10,7 +10,7 @@
 #include "problems/boundary_conditions.h"
 #include "problems/guidance.h"
 #include "problems/layout_checks.h"
-#include "problems/output_files.h"
+#include "base/output_files.h"
 #include "tests/test_cli.h"
 #include "tests/test_meshes.h"
 

@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/svg_canvas.h"
-#include "problems/output_files.h"
+#include "base/output_files.h"
 #include "problems/report_html.h"
 #include "problems/report_view3d.h"
 #include "tests/test_meshes.h"

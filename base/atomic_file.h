@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

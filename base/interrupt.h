@@ -18,7 +18,7 @@
 // SIGKILL; the staging folder it leaves is removed by the next run into the same folder.
 #pragma once
 
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

@@ -1,4 +1,4 @@
-#include "geometry/interrupt.h"
+#include "base/interrupt.h"
 
 #include <signal.h>
 

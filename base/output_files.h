@@ -36,7 +36,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 
@@ -51,7 +51,7 @@ class OutputFiles {
   std::string Path(const std::string& relative);
   Status WriteText(const std::string& relative, const std::string& content);
   // Moves every staged entry into the output folder (protocol above). Refuses, leaving the
-  // folder as it was, if SIGINT/SIGTERM has been received (geometry/interrupt.h); once
+  // folder as it was, if SIGINT/SIGTERM has been received (base/interrupt.h); once
   // started it runs to the end.
   Status Commit();
   // status with the staging folder's path in its message replaced by the output folder's:

@@ -1,4 +1,4 @@
-#include "problems/output_files.h"
+#include "base/output_files.h"
 
 #include <signal.h>
 #include <unistd.h>
@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "geometry/atomic_file.h"
-#include "geometry/interrupt.h"
+#include "base/atomic_file.h"
+#include "base/interrupt.h"
 
 namespace pqlayout {
 namespace fs = std::filesystem;
