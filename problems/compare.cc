@@ -9,10 +9,10 @@
 
 #include "base/atomic_file.h"
 #include "geometry/mesh_io.h"
-#include "problems/figures.h"
+#include "report/figures.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"
-#include "problems/report_html.h"
+#include "report/report_html.h"
 
 namespace pqlayout {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "base/interrupt.h"
 #include "problems/build_info.h"
-#include "problems/report_html.h"
+#include "report/report_html.h"
 #include "problems/stages.h"
 #include "solver/numerics.h"
 

@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "geometry/field_writers.h"
-#include "problems/figures.h"
+#include "report/figures.h"
 #include "problems/stages.h"
 #include "solver/calculix_export.h"
 #include "solver/frame_analysis.h"

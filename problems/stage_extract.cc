@@ -13,8 +13,8 @@
 #include "geometry/mesh_io.h"
 #include "geometry/planarity.h"
 #include "geometry/quad_extraction.h"
-#include "geometry/svg_canvas.h"
-#include "problems/figures.h"
+#include "report/svg_canvas.h"
+#include "report/figures.h"
 #include "problems/stages.h"
 
 namespace pqlayout {

@@ -13,7 +13,7 @@
 #include "geometry/line_field_singularities.h"
 #include "geometry/principal_directions.h"
 #include "geometry/scalar_field_extrema.h"
-#include "problems/figures.h"
+#include "report/figures.h"
 #include "problems/guidance.h"
 #include "problems/stages.h"
 #include "problems/surface_fields.h"

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "geometry/field_writers.h"
-#include "problems/figures.h"
+#include "report/figures.h"
 #include "problems/levelset.h"
 #include "problems/levelset_internal.h"
 #include "problems/panel_area.h"

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "geometry/differential_operators.h"
-#include "problems/figures.h"
+#include "report/figures.h"
 #include "problems/membrane.h"
 #include "problems/stages.h"
 #include "solver/cholmod_solver.h"

@@ -19,7 +19,7 @@
 #include "problems/residuals/fairness_residual.h"
 #include "problems/residuals/planarity_residual.h"
 #include "problems/residuals/surface_chart_manifold.h"
-#include "problems/figures.h"
+#include "report/figures.h"
 #include "problems/stages.h"
 
 namespace pqlayout {

@@ -4,7 +4,7 @@
 // the planarised mesh) and the 3D view of the final shell.
 #include <glog/logging.h>
 
-#include "problems/figures.h"
+#include "report/figures.h"
 #include "problems/grid_frame.h"
 #include "problems/planarize.h"
 #include "problems/stages.h"

@@ -7,7 +7,7 @@
 #include <numeric>
 
 #include "geometry/field_writers.h"
-#include "problems/figures.h"
+#include "report/figures.h"
 #include "solver/member_checks.h"
 
 namespace pqlayout {

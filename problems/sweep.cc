@@ -23,7 +23,7 @@
 #include "problems/child_processes.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"
-#include "problems/sweep_figures.h"
+#include "report/sweep_figures.h"
 
 namespace pqlayout {
 namespace {

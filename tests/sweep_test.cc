@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "problems/sweep.h"
-#include "problems/sweep_figures.h"
+#include "report/sweep_figures.h"
 #include "tests/run_helpers.h"
 #include "tests/test_meshes.h"
 

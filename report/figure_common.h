@@ -1,5 +1,5 @@
-// Helpers shared by the figure writers (problems/figures.cc: fields on the reference surface;
-// problems/shell_figures.cc: the grid shell): colour scales, the top-view frame (outline,
+// Helpers shared by the figure writers (report/figures.cc: fields on the reference surface;
+// report/shell_figures.cc: the grid shell): colour scales, the top-view frame (outline,
 // scale bar, north arrow, colour bar) and input checks. Internal to problems/.
 #pragma once
 
@@ -12,7 +12,7 @@
 #include "geometry/mesh.h"
 #include "base/status.h"
 #include "geometry/surface_model.h"
-#include "geometry/svg_canvas.h"
+#include "report/svg_canvas.h"
 
 namespace pqlayout {
 namespace figure {

@@ -1,5 +1,5 @@
 // The 3D view of report.html: the final grid shell (quads.obj) in WebGL through three.js
-// (inlined from the Debian package libjs-three: problems/embedded_js.h), to rotate (left
+// (inlined from the Debian package libjs-three: report/embedded_js.h), to rotate (left
 // drag), zoom (wheel) and pan (right or shift drag) with three.js's OrbitControls. Faces
 // are coloured by a metric picked from a <select>, with the figures' scales and numbers:
 //   nodal compliance  per node from analyze, each face the mean of its nodes (as
@@ -19,7 +19,7 @@
 // C++ figures draw. About 70 bytes per face with all three metrics, up to ~100 kB for the
 // reference, and 0.88 MB of three.js: the Great Court's page (675 faces) gains ~1 MB.
 //
-// Self-check: once drawn, the view's script (problems/report_view3d.js) measures it as
+// Self-check: once drawn, the view's script (report/report_view3d.js) measures it as
 // the figures are measured (report_html.h): the canvas (preserveDrawingBuffer) scaled onto
 // a 2D canvas, its fraction of non-white pixels (ink) and distinct colours; then it turns
 // the camera by 30° about the vertical, draws, counts the fraction of pixels that changed

@@ -1,6 +1,6 @@
-// JavaScript compiled into the binary for report.html's 3D view (problems/report_view3d.h):
+// JavaScript compiled into the binary for report.html's 3D view (report/report_view3d.h):
 // three.js r111 (three.min.js) and its OrbitControls (examples/js/controls/OrbitControls.js)
-// from the Debian package libjs-three, and the view's own script problems/report_view3d.js.
+// from the Debian package libjs-three, and the view's own script report/report_view3d.js.
 // CMake runs cmake/EmbedFiles.cmake on them at build time (problems/CMakeLists.txt), which
 // generates the definitions: the page needs no network, the binary no file at run time.
 #pragma once

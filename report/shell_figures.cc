@@ -1,17 +1,17 @@
 // The figures of the grid shell (top views of the polygon mesh: planarity, compliance,
-// offset, buckling, utilisation; the oblique 3D view): problems/figures.h.
+// offset, buckling, utilisation; the oblique 3D view): report/figures.h.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "geometry/svg_canvas.h"
-#include "problems/figure_common.h"
-#include "problems/figures.h"
+#include "report/svg_canvas.h"
+#include "report/figure_common.h"
+#include "report/figures.h"
 
 namespace pqlayout {
 namespace {
 using Eigen::Vector2d;
-using namespace figure;  // NOLINT: the shared figure helpers (problems/figure_common.h)
+using namespace figure;  // NOLINT: the shared figure helpers (report/figure_common.h)
 }  // namespace
 
 namespace {

@@ -11,7 +11,7 @@
 // number of distinct colours inside the SVG's data-plot rectangle) and stores the result
 // in the figure's data-check attribute; scripts/check_report.sh reads these from headless
 // Chromium's --dump-dom. Between the summary and the figures, the 3D view of the grid shell
-// (problems/report_view3d.h) measures itself likewise. The ids inside each inlined SVG are prefixed per figure, so that
+// (report/report_view3d.h) measures itself likewise. The ids inside each inlined SVG are prefixed per figure, so that
 // the gradients and patterns of one figure never resolve to another's.
 #pragma once
 
@@ -20,12 +20,12 @@
 #include <nlohmann/json.hpp>
 
 #include "base/output_files.h"
-#include "problems/report_view3d.h"
+#include "report/report_view3d.h"
 
 namespace pqlayout {
 
 // Reads the figures already written under out's figures/ folder. view3d: what the 3D view
-// draws (problems/report_view3d.h); without a shell (the default) the page has no 3D view.
+// draws (report/report_view3d.h); without a shell (the default) the page has no 3D view.
 Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out, const View3dData& view3d = {});
 
 // DIR/report.html after compare: `comparison` is compare.json's content; reads

@@ -1,4 +1,4 @@
-// report.html's 3D view (problems/report_view3d.h): draws the grid shell of the JSON in
+// report.html's 3D view (report/report_view3d.h): draws the grid shell of the JSON in
 // #view3d-data with three.js (r111, inlined before this script), faces coloured by the
 // metric picked, members as lines, the reference faint; OrbitControls rotate, zoom and pan.
 // Once drawn it measures itself into the section's data-check (scripts/check_report.sh).

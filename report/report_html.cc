@@ -1,4 +1,4 @@
-#include "problems/report_html.h"
+#include "report/report_html.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "base/atomic_file.h"
-#include "problems/report_view3d.h"
+#include "report/report_view3d.h"
 
 namespace pqlayout {
 namespace {

@@ -1,11 +1,11 @@
-#include "problems/sweep_figures.h"
+#include "report/sweep_figures.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "geometry/svg_canvas.h"
+#include "report/svg_canvas.h"
 
 namespace pqlayout {
 namespace {

@@ -1,4 +1,4 @@
-#include "problems/figure_common.h"
+#include "report/figure_common.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "problems/figures.h"
+#include "report/figures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,14 +7,14 @@
 #include "geometry/level_lines.h"
 #include "geometry/planarity.h"
 #include "geometry/streamlines.h"
-#include "geometry/svg_canvas.h"
-#include "problems/figure_common.h"
+#include "report/svg_canvas.h"
+#include "report/figure_common.h"
 
 namespace pqlayout {
 namespace {
 
 using Eigen::Vector2d;
-using namespace figure;  // NOLINT: the shared figure helpers (problems/figure_common.h)
+using namespace figure;  // NOLINT: the shared figure helpers (report/figure_common.h)
 
 constexpr int kColourLevels = 64;           // colour quantisation of the resampled grid
 constexpr double kNotEnforcedWeight = 0.5;  // weight below this: alignment not enforced

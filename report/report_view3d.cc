@@ -1,4 +1,4 @@
-#include "problems/report_view3d.h"
+#include "report/report_view3d.h"
 
 #include <algorithm>
 #include <array>
@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "problems/embedded_js.h"
-#include "problems/figure_common.h"
-#include "problems/figures.h"
+#include "report/embedded_js.h"
+#include "report/figure_common.h"
+#include "report/figures.h"
 
 namespace pqlayout {
 namespace {
@@ -250,7 +250,7 @@ std::string View3dHtml(const View3dData& data) {
   html += "</script>\n<script>";
   html += embedded::OrbitControlsJs();
   html += "</script>\n<script>";
-  html += embedded::View3dJs();  // problems/report_view3d.js
+  html += embedded::View3dJs();  // report/report_view3d.js
   return html + "</script>\n</section>\n";
 }
 

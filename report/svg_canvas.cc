@@ -1,4 +1,4 @@
-#include "geometry/svg_canvas.h"
+#include "report/svg_canvas.h"
 
 #include <algorithm>
 #include <array>

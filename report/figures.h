@@ -4,8 +4,8 @@
 // the level lines of the layout's two functions φ, ψ over the guidance (paper Figs. 7, 12),
 // and of the grid shell: planarity δ before/after planarisation (Fig. 8/13) and as an
 // oblique 3D view, nodal compliance (Fig. 9/14), stiffen's offset, the buckling mode and
-// the member utilisation. Written in problems/figures.cc (the reference surface's fields)
-// and problems/shell_figures.cc (the grid shell), sharing problems/figure_common.h.
+// the member utilisation. Written in report/figures.cc (the reference surface's fields)
+// and report/shell_figures.cc (the grid shell), sharing report/figure_common.h.
 //
 // Size: face fields of the reference (guidance magnitude): up to
 // FigureOptions::max_face_polygons faces every face is one <path> element
@@ -32,7 +32,7 @@
 #include "base/status.h"
 #include "geometry/seams.h"
 #include "geometry/surface_model.h"
-#include "geometry/svg_canvas.h"
+#include "report/svg_canvas.h"
 
 namespace pqlayout {
 
