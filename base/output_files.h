@@ -7,7 +7,7 @@
 // are kept.
 //
 // Commit protocol: report.json is the completion marker. `sweep` counts a run as finished by
-// its report.json alone (problems/sweep.h, InspectRun), and a reader takes the folder for a
+// its report.json alone (cli/sweep.h, InspectRun), and a reader takes the folder for a
 // complete run when it holds one. So Commit
 //   1. removes the old report.json (unlink),
 //   2. replaces every other entry (removes the old one, renames the staged one in),

@@ -15,10 +15,10 @@
 #include "base/atomic_file.h"
 #include "base/interrupt.h"
 #include "problems/build_info.h"
-#include "problems/compare.h"
+#include "cli/compare.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"
-#include "problems/sweep.h"
+#include "cli/sweep.h"
 
 namespace {
 

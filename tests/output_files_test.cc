@@ -10,7 +10,7 @@
 
 #include "base/interrupt.h"
 #include "base/output_files.h"
-#include "problems/sweep.h"
+#include "cli/sweep.h"
 #include "tests/run_helpers.h"
 #include "tests/test_meshes.h"
 

@@ -14,7 +14,7 @@
 #include <set>
 #include <sstream>
 
-#include "problems/sweep.h"
+#include "cli/sweep.h"
 #include "report/sweep_figures.h"
 #include "tests/run_helpers.h"
 #include "tests/test_meshes.h"

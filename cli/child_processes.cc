@@ -1,4 +1,4 @@
-#include "problems/child_processes.h"
+#include "cli/child_processes.h"
 
 #include <fcntl.h>
 #include <signal.h>

@@ -1,4 +1,4 @@
-#include "problems/sweep.h"
+#include "cli/sweep.h"
 
 #include <glog/logging.h>
 
@@ -20,7 +20,7 @@
 
 #include "base/atomic_file.h"
 #include "base/interrupt.h"
-#include "problems/child_processes.h"
+#include "cli/child_processes.h"
 #include "problems/config.h"
 #include "problems/pipeline.h"
 #include "report/sweep_figures.h"

@@ -1,4 +1,4 @@
-#include "problems/compare.h"
+#include "cli/compare.h"
 
 #include <glog/logging.h>
 
