@@ -10,8 +10,8 @@
 #include "base/atomic_file.h"
 #include "geometry/mesh_io.h"
 #include "report/figures.h"
-#include "problems/config.h"
-#include "problems/pipeline.h"
+#include "pipeline/config.h"
+#include "pipeline/pipeline.h"
 #include "report/report_html.h"
 
 namespace pqlayout {

@@ -14,10 +14,10 @@
 
 #include "base/atomic_file.h"
 #include "base/interrupt.h"
-#include "problems/build_info.h"
+#include "pipeline/build_info.h"
 #include "cli/compare.h"
-#include "problems/config.h"
-#include "problems/pipeline.h"
+#include "pipeline/config.h"
+#include "pipeline/pipeline.h"
 #include "cli/sweep.h"
 
 namespace {

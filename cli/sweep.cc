@@ -21,8 +21,8 @@
 #include "base/atomic_file.h"
 #include "base/interrupt.h"
 #include "cli/child_processes.h"
-#include "problems/config.h"
-#include "problems/pipeline.h"
+#include "pipeline/config.h"
+#include "pipeline/pipeline.h"
 #include "report/sweep_figures.h"
 
 namespace pqlayout {

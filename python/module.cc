@@ -32,9 +32,9 @@
 #include <vector>
 
 #include "base/interrupt.h"
-#include "problems/build_info.h"
-#include "problems/config.h"
-#include "problems/pipeline.h"
+#include "pipeline/build_info.h"
+#include "pipeline/config.h"
+#include "pipeline/pipeline.h"
 #include "python/module_arrays.h"
 
 namespace py = pybind11;

@@ -1,4 +1,4 @@
-// The pipeline: stages in the SPEC's order, each one file (problems/stage_<name>.cc) that
+// The pipeline: stages in the SPEC's order, each one file (pipeline/stage_<name>.cc) that
 // reads what the earlier stages left in PipelineState, adds its own results, writes its
 // output files and reports its metrics. RunPipeline times every stage, assembles
 // report.json and commits the outputs only when the run succeeded.
@@ -15,7 +15,7 @@
 #include "geometry/quad_extraction.h"
 #include "geometry/surface_model.h"
 #include "problems/boundary_conditions.h"
-#include "problems/config.h"
+#include "pipeline/config.h"
 #include "problems/guidance.h"
 #include "problems/levelset.h"
 #include "base/output_files.h"

@@ -15,7 +15,7 @@
 #include "geometry/quad_extraction.h"
 #include "report/svg_canvas.h"
 #include "report/figures.h"
-#include "problems/stages.h"
+#include "pipeline/stages.h"
 
 namespace pqlayout {
 namespace {

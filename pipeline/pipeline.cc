@@ -1,4 +1,4 @@
-#include "problems/pipeline.h"
+#include "pipeline/pipeline.h"
 
 #include <glog/logging.h>
 
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "base/interrupt.h"
-#include "problems/build_info.h"
+#include "pipeline/build_info.h"
 #include "report/report_html.h"
-#include "problems/stages.h"
+#include "pipeline/stages.h"
 #include "solver/numerics.h"
 
 namespace pqlayout {

@@ -1,4 +1,4 @@
-#include "problems/config.h"
+#include "pipeline/config.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -13,21 +13,10 @@
 #include <sstream>
 
 #include "geometry/surface_generators.h"
-#include "problems/config_rules.h"
-#include "problems/config_yaml.h"
+#include "pipeline/config_rules.h"
+#include "pipeline/config_yaml.h"
 
 namespace pqlayout {
-
-const char* BoundaryConditionName(BoundaryCondition c) {
-  switch (c) {
-    case BoundaryCondition::kFixed: return "fixed";
-    case BoundaryCondition::kFree: return "free";
-    case BoundaryCondition::kClamped: return "clamped";
-    case BoundaryCondition::kSliding: return "sliding";
-  }
-  return "?";
-}
-
 namespace {
 
 using config_yaml::Describe;

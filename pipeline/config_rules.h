@@ -1,5 +1,5 @@
 // Parsing of `boundary.default` and `boundary.rules` (the supports), split from config.cc.
-// Internal to the config parser: the public interface is problems/config.h.
+// Internal to the config parser: the public interface is pipeline/config.h.
 #pragma once
 
 #include <functional>
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
-#include "problems/config.h"
+#include "problems/options.h"
 
 namespace pqlayout {
 

@@ -3,7 +3,7 @@
 // rewrites it, so the file always matches the last completed stage.
 #pragma once
 
-#include "problems/pipeline.h"
+#include "pipeline/pipeline.h"
 
 namespace pqlayout {
 

@@ -1,4 +1,4 @@
-#include "problems/surface_fields.h"
+#include "pipeline/surface_fields.h"
 
 #include "geometry/field_writers.h"
 

@@ -1,10 +1,10 @@
-#include "problems/config_rules.h"
+#include "pipeline/config_rules.h"
 
 #include <cmath>
 #include <limits>
 #include <map>
 
-#include "problems/config_yaml.h"
+#include "pipeline/config_yaml.h"
 
 namespace pqlayout {
 

@@ -1,7 +1,7 @@
 // The stage functions (one file each), registered in pipeline.cc in the SPEC's order.
 #pragma once
 
-#include "problems/pipeline.h"
+#include "pipeline/pipeline.h"
 
 namespace pqlayout {
 
@@ -33,5 +33,9 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
 
 // analyze: the final mesh (state->shell) as a steel frame; writes analysis/nodes.csv, members.csv.
 Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics);
+
+// What planarize and stiffen both write (stage_planarize.cc): NAME.obj and NAME.ply (faces
+// coloured by δ: blue at 0, red at ≥ 10 × target).
+Status WriteShellMesh(const PolyMesh& mesh, double target_delta, OutputFiles* out, const std::string& name);
 
 }  // namespace pqlayout

@@ -1,6 +1,7 @@
 // Stage `levelset`: see problems/levelset.h. The problem itself is in problems/levelset_*.cc
 // (geometry, initial guess, Ceres terms, solves, metrics; shared declarations in
-// levelset_internal.h); this file scales the result to the panel density and writes it.
+// levelset_internal.h) and the panel-density scaling in problems/panel_area.h; this file
+// applies the scaling when layout.density asks for it and writes the result.
 #include <glog/logging.h>
 
 #include <algorithm>
@@ -10,45 +11,11 @@
 #include "geometry/field_writers.h"
 #include "report/figures.h"
 #include "problems/levelset.h"
-#include "problems/levelset_internal.h"
 #include "problems/panel_area.h"
-#include "problems/stages.h"
-#include "problems/surface_fields.h"
+#include "pipeline/stages.h"
+#include "pipeline/surface_fields.h"
 
 namespace pqlayout {
-
-using namespace levelset_internal;
-
-namespace {
-
-// Scales φ, ψ by `factor` (layout.density: panel_area). With seams the offsets become
-// round(factor·a) and φ, ψ are refitted to the scaled gradients under the rounded
-// transitions (one Poisson solve each), so that level lines still meet across the seams.
-Status ScaleLevelSets(double factor, double h, LevelSetSolution* solution) {
-  LevelSetSeams& seams = solution->seams;
-  if (!seams.cut) {
-    for (double& value : solution->phi) value *= factor;
-    for (double& value : solution->psi) value *= factor;
-    return Status::Ok();
-  }
-  const SurfaceModel& s = seams.cut->cut();
-  const LevelSetGeometry geo = Precompute(s);
-  for (int family = 0; family < 2; ++family) {
-    std::vector<double>& u = family == 0 ? solution->phi_cut : solution->psi_cut;
-    std::vector<double>& offsets = family == 0 ? seams.phi_offset : seams.psi_offset;
-    std::vector<Eigen::Vector3d> target(s.num_faces());
-    for (int f = 0; f < s.num_faces(); ++f) target[f] = factor * Gradient(geo, s, f, u);
-    for (double& a : offsets) a *= factor;
-    RoundOffsets(seams, &offsets);
-    PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, std::vector<double>(s.num_faces(), 1.0), &u, &seams, family, false, h));
-    ProjectTransitions(seams, offsets, &u);
-  }
-  solution->phi = seams.cut->ToOriginal(solution->phi_cut);
-  solution->psi = seams.cut->ToOriginal(solution->psi_cut);
-  return Status::Ok();
-}
-
-}  // namespace
 
 Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
   SurfaceModel& surface = *state->surface;

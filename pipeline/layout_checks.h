@@ -8,7 +8,7 @@
 
 #include "base/status.h"
 #include "geometry/surface_model.h"
-#include "problems/config.h"
+#include "problems/options.h"
 
 namespace pqlayout {
 

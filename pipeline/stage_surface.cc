@@ -4,8 +4,8 @@
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_metrics.h"
 #include "geometry/surface_generators.h"
-#include "problems/layout_checks.h"
-#include "problems/stages.h"
+#include "pipeline/layout_checks.h"
+#include "pipeline/stages.h"
 
 namespace pqlayout {
 namespace {

@@ -1,4 +1,4 @@
-// Stage `planarize`: see problems/planarize.h.
+// The planarisation problem (paper §3.2): see problems/planarize.h.
 #include <ceres/ceres.h>
 #include <glog/logging.h>
 
@@ -9,7 +9,6 @@
 
 #include "geometry/closest_point.h"
 #include "solver/ceres_options.h"
-#include "geometry/mesh_io.h"
 #include "geometry/planarity.h"
 #include "problems/planarize.h"
 #include "problems/residuals/anchor_residual.h"
@@ -19,8 +18,6 @@
 #include "problems/residuals/fairness_residual.h"
 #include "problems/residuals/planarity_residual.h"
 #include "problems/residuals/surface_chart_manifold.h"
-#include "report/figures.h"
-#include "problems/stages.h"
 
 namespace pqlayout {
 
@@ -252,41 +249,6 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
   }
   if (edge_sum > 0.0) report->max_displacement_edges = report->max_displacement / (edge_sum / mesh.n_edges());
   return Status::Ok();
-}
-
-Status WriteShellMesh(const PolyMesh& shell, double target_delta, OutputFiles* out, const std::string& name) {
-  PQ_RETURN_IF_ERROR(WriteMesh(shell, out->Path(name + ".obj")));
-  PolyMesh mesh = shell;
-  mesh.request_face_colors();
-  const std::vector<double> delta = FacePlanarity(mesh);
-  for (const auto f : mesh.faces()) {
-    const double t = std::clamp(delta[f.idx()] / (10.0 * target_delta), 0.0, 1.0);
-    mesh.set_color(f, OpenMesh::Vec3uc(static_cast<unsigned char>(255 * t), 64, static_cast<unsigned char>(255 * (1 - t))));
-  }
-  return WriteMesh(mesh, out->Path(name + ".ply"));
-}
-
-Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
-  PlanarizeReport report;
-  state->planarized = state->quads;
-  PQ_RETURN_IF_ERROR(PlanarizeMesh(*state->surface, state->config.planarize, state->config.layout.spacing,
-                                   &state->planarized, &report));
-  *metrics = report.ToJson();
-  const double h = state->config.layout.spacing;
-  if (report.planarity_max > state->config.planarize.target_delta)
-    LOG(WARNING) << "planarize: δ max " << report.planarity_max << " is above planarize.target_delta "
-                 << state->config.planarize.target_delta << " after " << report.rounds << " rounds";
-  LOG(INFO) << "planarize: δ max " << report.planarity_max << " (mean " << report.planarity_mean << "), closeness max "
-            << report.closeness_max / h << " h, boundary " << report.boundary_deviation / h << " h, moved ≤ "
-            << report.max_displacement / h << " h";
-  PolyMesh& mesh = state->planarized.mesh;
-  const double target = state->config.planarize.target_delta;
-  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads_planarized"));
-  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads"));  // the final mesh until stiffen replaces it
-  PQ_RETURN_IF_ERROR(WritePlanarityFigure(*state->surface, mesh, target, "Planarity δ after planarisation",
-                                          out->Path("figures/planarity.svg")));
-  return WriteShell3dFigure(*state->surface, mesh, target, "The grid shell, seen from the south-west",
-                            out->Path("figures/shell_3d.svg"));
 }
 
 }  // namespace pqlayout

@@ -7,7 +7,7 @@
 #include "report/figures.h"
 #include "problems/grid_frame.h"
 #include "problems/planarize.h"
-#include "problems/stages.h"
+#include "pipeline/stages.h"
 #include "problems/stiffen.h"
 
 namespace pqlayout {

@@ -1,4 +1,4 @@
-#include "problems/layout_checks.h"
+#include "pipeline/layout_checks.h"
 
 #include <Eigen/Eigenvalues>
 
