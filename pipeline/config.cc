@@ -167,6 +167,7 @@ void KeyTable::Rules(const std::string& key, std::vector<BoundaryRule>* f, const
   }, [f] { return BoundaryRulesToJson(*f); }});
 }
 
+// Long on purpose: one flat line per config key, in the order of the config reference.
 KeyTable::KeyTable(Config* c) {
   Integer("threads", &c->threads, 1, 256,
           "threads of Ceres, OpenBLAS and OpenMP; 1 (default) gives bit-identical results on every machine, more may not");

@@ -117,108 +117,152 @@ std::vector<std::array<int, 3>> PolylineTriples(const PolyMesh& mesh) {
   return triples;
 }
 
+// What the Ceres problems of all rounds share: the extracted positions (start), the current
+// ones (position, x y z per vertex, with non-corner vertices first moved onto the reference or
+// its boundary), every face's vertices and fitted plane, the polyline triples of fairness and
+// the edges of the edge-length hinge (a, b, ℓ_min).
+struct PlanarizeData {
+  std::vector<Eigen::Vector3d> start;
+  std::vector<double> position;
+  std::vector<std::vector<int>> faces;
+  std::vector<std::array<double, 4>> planes;
+  std::vector<double> mean_diagonal;
+  std::vector<std::array<int, 3>> triples;
+  std::vector<std::tuple<int, int, double>> edges;
+};
+
+PlanarizeData PrepareData(const ExtractedMesh& extracted, const ClosestPointQuery& query, double h) {
+  const PolyMesh& mesh = extracted.mesh;
+  const int nv = static_cast<int>(mesh.n_vertices());
+  PlanarizeData d;
+  d.start.resize(nv);
+  d.position.resize(3 * nv);
+  for (int v = 0; v < nv; ++v) {
+    d.start[v] = ToEigen(mesh.point(VertexHandle(v)));
+    const auto& origin = extracted.origin[v];
+    const Eigen::Vector3d p = origin.corner        ? d.start[v]
+                              : origin.on_boundary ? query.OnBoundary(d.start[v]).point
+                                                   : query.OnSurface(d.start[v]).point;
+    for (int k = 0; k < 3; ++k) d.position[3 * v + k] = p[k];
+  }
+  for (const auto f : mesh.faces()) {
+    std::vector<int> ids;
+    std::vector<Eigen::Vector3d> polygon;
+    for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx()), polygon.push_back(d.start[v.idx()]);
+    d.faces.push_back(ids);
+    const FacePlane plane = FitPolygonPlane(polygon);
+    d.planes.push_back({plane.n.x(), plane.n.y(), plane.n.z(), plane.d});
+    d.mean_diagonal.push_back(plane.mean_diagonal);
+  }
+  d.triples = PolylineTriples(mesh);
+  for (const auto e : mesh.edges()) {
+    const auto he = mesh.halfedge_handle(e, 0);
+    const int a = mesh.from_vertex_handle(he).idx(), b = mesh.to_vertex_handle(he).idx();
+    const double length = (d.start[a] - d.start[b]).norm();
+    d.edges.emplace_back(a, b, kEdgeFraction * std::min(length, h));
+  }
+  return d;
+}
+
+// The current weights of the schedule: planarity, closeness and boundary are raised round by
+// round; anchor and fairness stay at their config values.
+struct RoundWeights {
+  double planarity, closeness, boundary;
+};
+
+// One round: at most kIterationsPerRound Ceres iterations from d->position (updated in place).
+// on_surface: vertices move on the reference (SurfaceManifold); otherwise in space with
+// closeness and boundary residuals.
+void SolveRound(const ExtractedMesh& extracted, const ClosestPointQuery& query, const PlanarizeOptions& options,
+                double h, const RoundWeights& rw, bool on_surface, PlanarizeData* d, ceres::Solver::Summary* summary) {
+  const auto& w = options.weights;
+  const double anchor_weight = w.anchor, fairness_weight = w.fairness;
+  std::vector<double>& position = d->position;
+  ceres::Problem problem;
+  for (size_t f = 0; f < d->faces.size(); ++f) {
+    if (d->faces[f].size() < 4) continue;  // a triangle is planar
+    problem.AddParameterBlock(d->planes[f].data(), 4,
+                              new ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>());
+    for (const int v : d->faces[f])
+      problem.AddResidualBlock(PlanarityResidual::Create(rw.planarity, d->mean_diagonal[f]), nullptr,
+                               d->planes[f].data(), &position[3 * v]);
+  }
+  const int nv = static_cast<int>(d->start.size());
+  for (int v = 0; v < nv; ++v) {
+    double* p = &position[3 * v];
+    problem.AddParameterBlock(p, 3);
+    const auto& origin = extracted.origin[v];
+    if (origin.corner) {
+      problem.SetParameterBlockConstant(p);
+      continue;
+    }
+    if (on_surface)
+      problem.SetManifold(p, new SurfaceManifold(&query, origin.on_boundary));
+    else if (origin.on_boundary)
+      problem.AddResidualBlock(new BoundaryResidual(&query, rw.boundary, h), nullptr, p);
+    else
+      problem.AddResidualBlock(new ClosenessResidual(&query, rw.closeness, h), nullptr, p);
+    if (anchor_weight > 0.0) problem.AddResidualBlock(AnchorResidual::Create(d->start[v], anchor_weight, h), nullptr, p);
+  }
+  if (w.edge_length > 0.0)
+    for (const auto& [a, b, min_length] : d->edges)
+      problem.AddResidualBlock(EdgeLengthResidual::Create(min_length, w.edge_length * rw.planarity, h),
+                               nullptr, &position[3 * a], &position[3 * b]);
+  if (fairness_weight > 0.0)
+    for (const auto& t : d->triples)
+      problem.AddResidualBlock(FairnessResidual::Create(fairness_weight, h), nullptr, &position[3 * t[0]],
+                               &position[3 * t[1]], &position[3 * t[2]]);
+  ceres::Solver::Options solver_options = SparseCholeskyOptions(kIterationsPerRound);
+  GoalReached goal(d->faces, position, query, kEarlyDelta * options.target_delta, kEarlyCloseness * h);
+  solver_options.callbacks.push_back(&goal);
+  solver_options.update_state_every_iteration = true;
+  ceres::Solve(solver_options, &problem, summary);
+  VLOG(1) << "planarize: Ceres:\n" << summary->FullReport();
+}
+
+void SetPoints(const std::vector<double>& position, PolyMesh* mesh) {
+  for (int v = 0; v < static_cast<int>(mesh->n_vertices()); ++v)
+    mesh->set_point(VertexHandle(v), {position[3 * v], position[3 * v + 1], position[3 * v + 2]});
+}
+
+// How far the vertices moved from the extracted mesh: in metres and in its mean edge lengths.
+void MeasureDisplacement(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start, PlanarizeReport* report) {
+  for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v)
+    report->max_displacement = std::max(report->max_displacement, (ToEigen(mesh.point(VertexHandle(v))) - start[v]).norm());
+  double edge_sum = 0.0;
+  for (const auto e : mesh.edges()) {
+    const auto he = mesh.halfedge_handle(e, 0);
+    edge_sum += (start[mesh.to_vertex_handle(he).idx()] - start[mesh.from_vertex_handle(he).idx()]).norm();
+  }
+  if (edge_sum > 0.0) report->max_displacement_edges = report->max_displacement / (edge_sum / mesh.n_edges());
+}
+
 }  // namespace
 
 Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double h, ExtractedMesh* extracted,
                      PlanarizeReport* report) {
   PolyMesh& mesh = extracted->mesh;
   const ClosestPointQuery query(reference);
-  const int nv = static_cast<int>(mesh.n_vertices());
-  std::vector<Eigen::Vector3d> start(nv);
-  std::vector<double> position(3 * nv);
-  for (int v = 0; v < nv; ++v) {
-    start[v] = ToEigen(mesh.point(VertexHandle(v)));
-    const auto& origin = extracted->origin[v];
-    const Eigen::Vector3d p =
-        origin.corner ? start[v] : origin.on_boundary ? query.OnBoundary(start[v]).point : query.OnSurface(start[v]).point;
-    for (int k = 0; k < 3; ++k) position[3 * v + k] = p[k];
-  }
-  std::vector<std::vector<int>> faces;
-  std::vector<std::array<double, 4>> planes;
-  std::vector<double> mean_diagonal;
-  for (const auto f : mesh.faces()) {
-    std::vector<int> ids;
-    std::vector<Eigen::Vector3d> polygon;
-    for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx()), polygon.push_back(start[v.idx()]);
-    faces.push_back(ids);
-    const FacePlane plane = FitPolygonPlane(polygon);
-    planes.push_back({plane.n.x(), plane.n.y(), plane.n.z(), plane.d});
-    mean_diagonal.push_back(plane.mean_diagonal);
-  }
-  const auto triples = PolylineTriples(mesh);
-  std::vector<std::tuple<int, int, double>> edges;  // (a, b, ℓ_min)
-  for (const auto e : mesh.edges()) {
-    const auto he = mesh.halfedge_handle(e, 0);
-    const int a = mesh.from_vertex_handle(he).idx(), b = mesh.to_vertex_handle(he).idx();
-    const double length = (start[a] - start[b]).norm();
-    edges.emplace_back(a, b, kEdgeFraction * std::min(length, h));
-  }
+  PlanarizeData data = PrepareData(*extracted, query, h);
   const auto& w = options.weights;
   // Weights (config values scale these): the residuals are all dimensionless (δ, metres / h),
   // so the same numbers work at every spacing h.
-  const double anchor_weight = w.anchor, fairness_weight = w.fairness;
-  double planarity_weight = kPlanarityStart * w.planarity;
-  double closeness_weight = kClosenessStart * w.closeness, boundary_weight = kClosenessStart * w.boundary;
+  RoundWeights rw{kPlanarityStart * w.planarity, kClosenessStart * w.closeness, kClosenessStart * w.boundary};
 
-  // on_surface: vertices move on the reference (SurfaceManifold); otherwise in space with
-  // closeness and boundary residuals.
-  auto solve = [&](bool on_surface, ceres::Solver::Summary* summary) {
-    ceres::Problem problem;
-    for (size_t f = 0; f < faces.size(); ++f) {
-      if (faces[f].size() < 4) continue;  // a triangle is planar
-      problem.AddParameterBlock(planes[f].data(), 4,
-                                new ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>());
-      for (const int v : faces[f])
-        problem.AddResidualBlock(PlanarityResidual::Create(planarity_weight, mean_diagonal[f]), nullptr,
-                                 planes[f].data(), &position[3 * v]);
-    }
-    for (int v = 0; v < nv; ++v) {
-      double* p = &position[3 * v];
-      problem.AddParameterBlock(p, 3);
-      const auto& origin = extracted->origin[v];
-      if (origin.corner) {
-        problem.SetParameterBlockConstant(p);
-        continue;
-      }
-      if (on_surface)
-        problem.SetManifold(p, new SurfaceManifold(&query, origin.on_boundary));
-      else if (origin.on_boundary)
-        problem.AddResidualBlock(new BoundaryResidual(&query, boundary_weight, h), nullptr, p);
-      else
-        problem.AddResidualBlock(new ClosenessResidual(&query, closeness_weight, h), nullptr, p);
-      if (anchor_weight > 0.0) problem.AddResidualBlock(AnchorResidual::Create(start[v], anchor_weight, h), nullptr, p);
-    }
-    if (w.edge_length > 0.0)
-      for (const auto& [a, b, min_length] : edges)
-        problem.AddResidualBlock(EdgeLengthResidual::Create(min_length, w.edge_length * planarity_weight, h),
-                                 nullptr, &position[3 * a], &position[3 * b]);
-    if (fairness_weight > 0.0)
-      for (const auto& t : triples)
-        problem.AddResidualBlock(FairnessResidual::Create(fairness_weight, h), nullptr, &position[3 * t[0]],
-                                 &position[3 * t[1]], &position[3 * t[2]]);
-    ceres::Solver::Options solver_options = SparseCholeskyOptions(kIterationsPerRound);
-    GoalReached goal(faces, position, query, kEarlyDelta * options.target_delta, kEarlyCloseness * h);
-    solver_options.callbacks.push_back(&goal);
-    solver_options.update_state_every_iteration = true;
-    ceres::Solve(solver_options, &problem, summary);
-    VLOG(1) << "planarize: Ceres:\n" << summary->FullReport();
-  };
-
-  for (int v = 0; v < nv; ++v) mesh.set_point(VertexHandle(v), {position[3 * v], position[3 * v + 1], position[3 * v + 2]});
+  SetPoints(data.position, &mesh);
   Measure(mesh, extracted->origin, query, report);
   bool on_surface = true;
   for (report->rounds = 0; report->rounds < options.max_rounds && report->planarity_max > options.target_delta;) {
     ++report->rounds;
     ceres::Solver::Summary summary;
     const double previous = report->planarity_max;
-    solve(on_surface, &summary);
+    SolveRound(*extracted, query, options, h, rw, on_surface, &data, &summary);
     if (!summary.IsSolutionUsable()) return Status::Internal("planarize: Ceres failed: " + summary.message);
-    for (int v = 0; v < nv; ++v)
-      mesh.set_point(VertexHandle(v), {position[3 * v], position[3 * v + 1], position[3 * v + 2]});
+    SetPoints(data.position, &mesh);
     Measure(mesh, extracted->origin, query, report);
     report->iterations += static_cast<int>(summary.iterations.size()) - 1;
-    report->ceres.push_back({{"round", report->rounds}, {"on_surface", on_surface}, {"planarity_weight", planarity_weight},
-                             {"closeness_weight", on_surface ? 0.0 : closeness_weight},
+    report->ceres.push_back({{"round", report->rounds}, {"on_surface", on_surface}, {"planarity_weight", rw.planarity},
+                             {"closeness_weight", on_surface ? 0.0 : rw.closeness},
                              {"iterations", summary.iterations.size() - 1}, {"initial_cost", summary.initial_cost},
                              {"final_cost", summary.final_cost}, {"planarity_max", report->planarity_max},
                              {"closeness_max", report->closeness_max}, {"seconds", summary.total_time_in_seconds}});
@@ -235,19 +279,12 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
     const bool switching = on_surface && report->planarity_max > 0.5 * previous;
     if (switching) on_surface = false;
     if (!switching || w.edge_length == 0.0) {
-      planarity_weight *= kPlanarityRaise;
-      closeness_weight *= kClosenessRaise;
-      boundary_weight *= kClosenessRaise;
+      rw.planarity *= kPlanarityRaise;
+      rw.closeness *= kClosenessRaise;
+      rw.boundary *= kClosenessRaise;
     }
   }
-  for (int v = 0; v < nv; ++v)
-    report->max_displacement = std::max(report->max_displacement, (ToEigen(mesh.point(VertexHandle(v))) - start[v]).norm());
-  double edge_sum = 0.0;
-  for (const auto e : mesh.edges()) {
-    const auto he = mesh.halfedge_handle(e, 0);
-    edge_sum += (start[mesh.to_vertex_handle(he).idx()] - start[mesh.from_vertex_handle(he).idx()]).norm();
-  }
-  if (edge_sum > 0.0) report->max_displacement_edges = report->max_displacement / (edge_sum / mesh.n_edges());
+  MeasureDisplacement(mesh, data.start, report);
   return Status::Ok();
 }
 
