@@ -136,7 +136,7 @@ def write_markdown(rows, path, sets):
     met = sum(1 for r in rows if r.get("misses") == 0)
     lines += ["", f"All targets met: {met} of {len(rows)} runs.", "",
               "## Every miss and its cause", "",
-              "As report.json `targets` gives it (problems/layout_targets.h: measured from the run: "
+              "As report.json `targets` gives it (pipeline/layout_targets.h: measured from the run: "
               "where the worst element is and what lies there).", ""]
     for row in rows:
         for name, value, target, cause in row.get("causes", []):

@@ -3,7 +3,7 @@
 // Reading Room's 22 m-radius ring cut out) lifted to a dome, built directly with OpenMesh —
 // CGAL meshing of 1M faces would take far longer than the figure. Above
 // FigureOptions::max_face_polygons faces the figure writers resample the face colours onto
-// a 2 px grid (problems/figures.h), so time and size depend on the drawing, not the mesh.
+// a 2 px grid (report/figures.h), so time and size depend on the drawing, not the mesh.
 // Counters: faces, bytes (size of the SVG written).
 #include <benchmark/benchmark.h>
 
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "geometry/surface_model.h"
-#include "problems/figures.h"
+#include "report/figures.h"
 
 namespace pqlayout {
 namespace {

@@ -18,7 +18,7 @@
 
 #include "geometry/surface_generators.h"
 #include "problems/planarize.h"
-#include "problems/stages.h"
+#include "pipeline/stages.h"
 
 namespace pqlayout {
 namespace {

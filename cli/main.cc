@@ -2,7 +2,7 @@
 // `compare`, `sweep`, `collect` and `keys` (the config reference). Exit codes: 0 success,
 // 2 bad input or config (one line on stderr naming the file, key or element), 1 internal
 // failure (sweep: 1 also when a run failed), 130/143 after SIGINT/SIGTERM (run, compare and
-// sweep stop cleanly; see geometry/interrupt.h). Progress lines with elapsed time go to stdout.
+// sweep stop cleanly; see base/interrupt.h). Progress lines with elapsed time go to stdout.
 #include <CLI/CLI.hpp>
 #include <glog/logging.h>
 
@@ -12,13 +12,13 @@
 #include <iostream>
 #include <new>
 
-#include "geometry/atomic_file.h"
-#include "geometry/interrupt.h"
-#include "problems/build_info.h"
-#include "problems/compare.h"
-#include "problems/config.h"
-#include "problems/pipeline.h"
-#include "problems/sweep.h"
+#include "base/atomic_file.h"
+#include "base/interrupt.h"
+#include "pipeline/build_info.h"
+#include "cli/compare.h"
+#include "pipeline/config.h"
+#include "pipeline/pipeline.h"
+#include "cli/sweep.h"
 
 namespace {
 
@@ -46,7 +46,7 @@ std::string VersionText() {
 using pqlayout::OneLine;
 
 // A command stopped by SIGINT/SIGTERM says so in one line and exits with 128 + the signal
-// (130, 143), whatever failure the interrupt caused on its way out (geometry/interrupt.h).
+// (130, 143), whatever failure the interrupt caused on its way out (base/interrupt.h).
 int ExitCode(const Status& status) {
   if (status.ok()) return 0;
   if (const int signal = pqlayout::InterruptSignal()) {
@@ -138,6 +138,70 @@ int Sweep(SweepArguments args, const char* argv0) {
   return 1;
 }
 
+// `pqlayout run CONFIG`: its options.
+CLI::App* AddRunCommand(CLI::App* app, RunArguments* args) {
+  CLI::App* run = app->add_subcommand("run", "run the pipeline on a YAML config file");
+  run->add_option("CONFIG", args->config, "YAML config file (see examples/great_court.yaml)")->required();
+  run->add_option("--set", args->sets, "override a config key, KEY=VALUE (VALUE is YAML); repeatable")
+      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  run->add_option("--out", args->out, "output folder (default: out/<config name>)");
+  run->add_option("--until", args->until, "last stage to run")
+      ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
+  run->add_option("--error-file", args->error_file,
+                  "on failure also write the error line to this file (removed on success); used by sweeps");
+  return run;
+}
+
+// `pqlayout compare CONFIG`: its options.
+CLI::App* AddCompareCommand(CLI::App* app, RunArguments* args) {
+  CLI::App* compare = app->add_subcommand(
+      "compare", "run CONFIG with strain and with curvature guidance and compare the two grid shells");
+  compare->add_option("CONFIG", args->config, "YAML config file")->required();
+  compare->add_option("--set", args->sets, "override a config key in both runs, KEY=VALUE; repeatable")
+      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  compare->add_option("--out", args->out, "output folder (default: out/<config name>-compare)");
+  return compare;
+}
+
+// `pqlayout sweep CONFIG --param ...`: its options.
+CLI::App* AddSweepCommand(CLI::App* app, SweepArguments* args) {
+  CLI::App* sweep = app->add_subcommand(
+      "sweep",
+      "run CONFIG for every combination of parameter values (cartesian product), each run in DIR/runs/<name>; "
+      "finished runs are skipped, so a sweep resumes. Writes DIR/sweep.csv, DIR/timings.csv and "
+      "DIR/figures/pareto.svg. Exit 0 if every run finished, 1 if a run failed (its error is in sweep.csv), "
+      "2 on bad input before anything ran");
+  sweep->add_option("CONFIG", args->options.config_path, "YAML config file")->required();
+  sweep->add_option("--param", args->options.parameters,
+                    "KEY=v1,v2,... | KEY=start:stop:count | KEY=log:start:stop:count (count values, ends "
+                    "included); repeatable, the first --param varies slowest")
+      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->required();
+  sweep->add_option("--set", args->options.overrides, "override a config key in every run, KEY=VALUE; repeatable")
+      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sweep->add_option("-j,--jobs", args->jobs,
+                    "runs at a time, each its own process (each on `threads` threads, default 1): -j = cores")
+      ->check(CLI::Range(1, 256))->capture_default_str();
+  sweep->add_option("--out", args->options.out_dir, "sweep folder (default: out/<config name>-sweep)");
+  sweep->add_option("--until", args->options.until, "last stage of every run")
+      ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
+  sweep->add_flag("--list", args->list,
+                  "write DIR/sweep.json and print one `pqlayout run ...` command per run not yet finished "
+                  "(for GNU parallel or a job array) instead of running; then `pqlayout collect DIR`");
+  return sweep;
+}
+
+int Compare(const RunArguments& args, const std::string& command_line) {
+  pqlayout::CompareOptions options;
+  options.config_path = args.config;
+  options.overrides = args.sets;
+  options.command_line = command_line;
+  options.out_dir = args.out.empty() ? "out/" + std::filesystem::path(args.config).stem().string() + "-compare"
+                                     : args.out;
+  nlohmann::json comparison;
+  pqlayout::InstallInterruptHandlers();
+  return ExitCode(pqlayout::RunCompare(options, &comparison));
+}
+
 int Main(int argc, char** argv) {
   CLI::App app{"pqlayout: lays out planar quadrilateral grid shells on freeform roofs so that the "
                "grid follows the flow of force (Schiftner & Balzer, statics-sensitive layout)."};
@@ -150,51 +214,17 @@ int Main(int argc, char** argv) {
   app.add_flag("-v,--verbose", verbose, "more detail (repeat for more)");
 
   RunArguments run_args;
-  CLI::App* run = app.add_subcommand("run", "run the pipeline on a YAML config file");
-  run->add_option("CONFIG", run_args.config, "YAML config file (see examples/great_court.yaml)")->required();
-  run->add_option("--set", run_args.sets, "override a config key, KEY=VALUE (VALUE is YAML); repeatable")
-      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  run->add_option("--out", run_args.out, "output folder (default: out/<config name>)");
-  run->add_option("--until", run_args.until, "last stage to run")
-      ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
+  AddRunCommand(&app, &run_args);
   CLI::App* keys = app.add_subcommand("keys", "print the config reference (every key, default, meaning)");
   RunArguments compare_args;
-  CLI::App* compare = app.add_subcommand(
-      "compare", "run CONFIG with strain and with curvature guidance and compare the two grid shells");
-  compare->add_option("CONFIG", compare_args.config, "YAML config file")->required();
-  compare->add_option("--set", compare_args.sets, "override a config key in both runs, KEY=VALUE; repeatable")
-      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  compare->add_option("--out", compare_args.out, "output folder (default: out/<config name>-compare)");
+  CLI::App* compare = AddCompareCommand(&app, &compare_args);
   SweepArguments sweep_args;
-  CLI::App* sweep = app.add_subcommand(
-      "sweep",
-      "run CONFIG for every combination of parameter values (cartesian product), each run in DIR/runs/<name>; "
-      "finished runs are skipped, so a sweep resumes. Writes DIR/sweep.csv, DIR/timings.csv and "
-      "DIR/figures/pareto.svg. Exit 0 if every run finished, 1 if a run failed (its error is in sweep.csv), "
-      "2 on bad input before anything ran");
-  sweep->add_option("CONFIG", sweep_args.options.config_path, "YAML config file")->required();
-  sweep->add_option("--param", sweep_args.options.parameters,
-                    "KEY=v1,v2,... | KEY=start:stop:count | KEY=log:start:stop:count (count values, ends "
-                    "included); repeatable, the first --param varies slowest")
-      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->required();
-  sweep->add_option("--set", sweep_args.options.overrides, "override a config key in every run, KEY=VALUE; repeatable")
-      ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  sweep->add_option("-j,--jobs", sweep_args.jobs,
-                    "runs at a time, each its own process (each on `threads` threads, default 1): -j = cores")
-      ->check(CLI::Range(1, 256))->capture_default_str();
-  sweep->add_option("--out", sweep_args.options.out_dir, "sweep folder (default: out/<config name>-sweep)");
-  sweep->add_option("--until", sweep_args.options.until, "last stage of every run")
-      ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
-  sweep->add_flag("--list", sweep_args.list,
-                  "write DIR/sweep.json and print one `pqlayout run ...` command per run not yet finished "
-                  "(for GNU parallel or a job array) instead of running; then `pqlayout collect DIR`");
+  CLI::App* sweep = AddSweepCommand(&app, &sweep_args);
   std::string collect_dir;
   CLI::App* collect = app.add_subcommand(
       "collect", "gather the finished runs of a sweep folder into DIR/sweep.csv, DIR/timings.csv and "
                  "DIR/figures/pareto.svg");
   collect->add_option("DIR", collect_dir, "sweep folder (holds sweep.json)")->required();
-  run->add_option("--error-file", run_args.error_file,
-                  "on failure also write the error line to this file (removed on success); used by sweeps");
 
   try {
     app.parse(argc, argv);
@@ -223,18 +253,7 @@ int Main(int argc, char** argv) {
     pqlayout::CollectSummary summary;
     return ExitCode(pqlayout::CollectSweep(collect_dir, &summary));
   }
-  if (compare->parsed()) {
-    pqlayout::CompareOptions options;
-    options.config_path = compare_args.config;
-    options.overrides = compare_args.sets;
-    options.command_line = command_line;
-    options.out_dir = compare_args.out.empty()
-                          ? "out/" + std::filesystem::path(compare_args.config).stem().string() + "-compare"
-                          : compare_args.out;
-    nlohmann::json comparison;
-    pqlayout::InstallInterruptHandlers();
-    return ExitCode(pqlayout::RunCompare(options, &comparison));
-  }
+  if (compare->parsed()) return Compare(compare_args, command_line);
   return Run(run_args, command_line);
 }
 

@@ -1,6 +1,6 @@
 # cmake -P script: writes OUTPUT, a C++ source that holds the bytes of files as char arrays,
 # so that the binary carries them and never reads them at run time (the report's 3D view
-# inlines three.js this way: problems/embedded_three.h).
+# inlines three.js this way: report/embedded_js.h).
 #   -DOUTPUT=file.cc -DNAMES=kA,kB -DINPUTS=/path/a.js,/path/b.js
 # Each kX becomes `extern const unsigned char kX[]` (the bytes, then a terminating 0) and
 # `extern const std::size_t kXSize` (the byte count without the 0), in namespace

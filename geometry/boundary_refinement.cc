@@ -143,6 +143,139 @@ Span Between(const ReferenceBoundary& boundary, const ReferenceBoundary::Locatio
   return s;
 }
 
+// The boundary loops of a mesh given as halfedge → face, each in the faces' orientation and
+// starting at a corner if it has one.
+std::vector<std::vector<int>> MeshBoundaryLoops(const std::map<std::pair<int, int>, int>& face_of,
+                                                const std::vector<QuadMeshVertex>& origin) {
+  std::map<int, int> next;  // along the mesh boundary, in the faces' orientation
+  for (const auto& [halfedge, f] : face_of)
+    if (!face_of.count({halfedge.second, halfedge.first})) next[halfedge.first] = halfedge.second;
+  std::set<int> visited;
+  std::vector<std::vector<int>> loops;
+  for (const auto& [first, unused] : next) {
+    if (visited.count(first)) continue;
+    // The loop through `first`, starting at a corner if there is one.
+    std::vector<int> loop;
+    for (int v = first; !visited.count(v) && next.count(v); v = next.at(v)) loop.push_back(v), visited.insert(v);
+    const auto corner = std::find_if(loop.begin(), loop.end(), [&](int v) { return origin[v].corner; });
+    if (corner != loop.end()) std::rotate(loop.begin(), corner, loop.end());
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+// What a slide must not spoil at a vertex: the smallest angle of the faces at it and its
+// shortest edge.
+class VertexShape {
+ public:
+  VertexShape(const std::vector<std::vector<int>>& faces, const std::vector<Eigen::Vector3d>& position)
+      : faces_(faces), position_(position), faces_at_(position.size()) {
+    for (size_t f = 0; f < faces.size(); ++f)
+      for (const int v : faces[f]) faces_at_[v].push_back(int(f));
+  }
+  double SmallestAngle(int v) const {
+    double angle = M_PI;
+    for (const int f : faces_at_[v]) angle = std::min(angle, ShapeAngle(position_, faces_[f]));
+    return angle;
+  }
+  double ShortestEdge(int v) const {
+    double shortest = INFINITY;
+    for (const int f : faces_at_[v]) {
+      const auto& face = faces_[f];
+      const size_t k = std::find(face.begin(), face.end(), v) - face.begin(), m = face.size();
+      for (const int w : {face[(k + 1) % m], face[(k + m - 1) % m]})
+        shortest = std::min(shortest, (position_[w] - position_[v]).norm());
+    }
+    return shortest;
+  }
+
+ private:
+  const std::vector<std::vector<int>>& faces_;
+  const std::vector<Eigen::Vector3d>& position_;  // read as it changes
+  std::vector<std::vector<int>> faces_at_;
+};
+
+// SlideBoundaryVertices on one mesh boundary loop (below). Returns the number of vertices moved.
+int SlideLoop(const ReferenceBoundary& boundary, const std::vector<int>& loop, double tolerance, double max_slide,
+              double min_edge, const VertexShape& shape, std::vector<Eigen::Vector3d>* position,
+              std::vector<QuadMeshVertex>* origin) {
+  const size_t n = loop.size();
+  // Arc length along the walk from loop[0]; the walk must go one way round the reference loop.
+  const auto l0 = boundary.Locate((*position)[loop[0]]);
+  const Span first_step = Between(boundary, l0, boundary.Locate((*position)[loop[1]]));
+  if (!first_step.ok) return 0;
+  const bool forward = first_step.a_first;
+  std::vector<double> t(n + 1, 0.0);
+  bool consistent = true;
+  for (size_t i = 1; i <= n && consistent; ++i) {
+    const Span step = Between(boundary, boundary.Locate((*position)[loop[i - 1]]),
+                              boundary.Locate((*position)[loop[i % n]]));
+    consistent = step.ok && step.a_first == forward && boundary.Locate((*position)[loop[i % n]]).loop == l0.loop;
+    t[i] = t[i - 1] + step.span;
+  }
+  if (!consistent) return 0;
+  const auto arc = [&](double u) { return forward ? l0.arc + u : l0.arc - u; };
+  const auto point = [&](double u) {
+    Eigen::Vector3d p;
+    boundary.PointAt(l0.loop, arc(u), &p);
+    return p;
+  };
+  // Deviation of the chord u0 → u1 cut into k equal pieces.
+  const auto deviation = [&](double u0, double u1, int k) {
+    double d = 0.0;
+    const double piece = (u1 - u0) / k;
+    for (int j = 0; j < k; ++j) {
+      const double a = u0 + j * piece, b = a + piece;
+      d = std::max(d, boundary.ChordDeviation(point(a), point(b), l0.loop, forward ? arc(a) : arc(b), piece));
+    }
+    return d;
+  };
+  int moved = 0;
+  double previous = 0.0;
+  for (size_t i = 1; i < n; ++i) {
+    const int v = loop[i];
+    double place = t[i];
+    if (!(*origin)[v].corner) {
+      const double lo = std::max(t[i] - max_slide, previous + kSlideMargin * (t[i] - previous));
+      const double hi = std::min(t[i] + max_slide, t[i + 1] - kSlideMargin * (t[i + 1] - t[i]));
+      if (lo < hi) {
+        int k = 1;
+        while (k < kMaxPieces && deviation(previous, lo, k) > tolerance) ++k;
+        const bool keep = k == 1 && t[i] >= lo && t[i] <= hi && deviation(previous, t[i], 1) <= tolerance;
+        if (!keep) {
+          double a = lo, b = hi;  // farthest place in [lo, hi] where k pieces are within tolerance
+          if (deviation(previous, hi, k) <= tolerance) {
+            a = hi;
+          } else {
+            for (int it = 0; it < 40; ++it) {
+              const double mid = 0.5 * (a + b);
+              (deviation(previous, mid, k) <= tolerance ? a : b) = mid;
+            }
+          }
+          place = a;
+        }
+      }
+    }
+    if (place != t[i]) {
+      const double angle_before = shape.SmallestAngle(v), edge_before = shape.ShortestEdge(v);
+      const Eigen::Vector3d old_position = (*position)[v];
+      Eigen::Vector3d p;
+      const QuadMeshVertex slid = boundary.PointAt(l0.loop, arc(place), &p);
+      (*position)[v] = p;
+      if (shape.SmallestAngle(v) < std::min(angle_before, kGoodAngle) ||
+          shape.ShortestEdge(v) < std::min(edge_before, min_edge)) {
+        (*position)[v] = old_position;
+        place = t[i];
+      } else {
+        (*origin)[v] = slid;
+        ++moved;
+      }
+    }
+    previous = place;
+  }
+  return moved;
+}
+
 // Slides boundary vertices (not corners) along the boundary so that fewer chords need an
 // extra vertex. Greedy along each mesh boundary loop, starting at a corner if it has one:
 // a vertex keeps its place if its chord from the previous (already placed) vertex is within
@@ -158,111 +291,48 @@ int SlideBoundaryVertices(const ReferenceBoundary& boundary, double tolerance, d
                           const std::map<std::pair<int, int>, int>& face_of, std::vector<Eigen::Vector3d>* position,
                           std::vector<QuadMeshVertex>* origin) {
   if (!(max_slide > 0.0)) return 0;
-  std::map<int, int> next;  // along the mesh boundary, in the faces' orientation
-  for (const auto& [halfedge, f] : face_of)
-    if (!face_of.count({halfedge.second, halfedge.first})) next[halfedge.first] = halfedge.second;
-  std::vector<std::vector<int>> faces_at(position->size());
-  for (size_t f = 0; f < faces.size(); ++f)
-    for (const int v : faces[f]) faces_at[v].push_back(int(f));
-  const auto smallest_angle = [&](int v) {
-    double angle = M_PI;
-    for (const int f : faces_at[v]) angle = std::min(angle, ShapeAngle(*position, faces[f]));
-    return angle;
-  };
-  const auto shortest_edge = [&](int v) {
-    double shortest = INFINITY;
-    for (const int f : faces_at[v]) {
-      const auto& face = faces[f];
-      const size_t k = std::find(face.begin(), face.end(), v) - face.begin(), m = face.size();
-      for (const int w : {face[(k + 1) % m], face[(k + m - 1) % m]})
-        shortest = std::min(shortest, ((*position)[w] - (*position)[v]).norm());
-    }
-    return shortest;
-  };
-  std::set<int> visited;
+  const VertexShape shape(faces, *position);
   int moved = 0;
-  for (const auto& [first, unused] : next) {
-    if (visited.count(first)) continue;
-    // The loop through `first`, starting at a corner if there is one.
-    std::vector<int> loop;
-    for (int v = first; !visited.count(v) && next.count(v); v = next.at(v)) loop.push_back(v), visited.insert(v);
-    const auto corner = std::find_if(loop.begin(), loop.end(), [&](int v) { return (*origin)[v].corner; });
-    if (corner != loop.end()) std::rotate(loop.begin(), corner, loop.end());
-    const size_t n = loop.size();
-    if (n < 3) continue;
-    // Arc length along the walk from loop[0]; the walk must go one way round the reference loop.
-    const auto l0 = boundary.Locate((*position)[loop[0]]);
-    const Span first_step = Between(boundary, l0, boundary.Locate((*position)[loop[1]]));
-    if (!first_step.ok) continue;
-    const bool forward = first_step.a_first;
-    std::vector<double> t(n + 1, 0.0);
-    bool consistent = true;
-    for (size_t i = 1; i <= n && consistent; ++i) {
-      const Span step = Between(boundary, boundary.Locate((*position)[loop[i - 1]]),
-                                boundary.Locate((*position)[loop[i % n]]));
-      consistent = step.ok && step.a_first == forward && boundary.Locate((*position)[loop[i % n]]).loop == l0.loop;
-      t[i] = t[i - 1] + step.span;
-    }
-    if (!consistent) continue;
-    const auto arc = [&](double u) { return forward ? l0.arc + u : l0.arc - u; };
-    const auto point = [&](double u) {
-      Eigen::Vector3d p;
-      boundary.PointAt(l0.loop, arc(u), &p);
-      return p;
-    };
-    // Deviation of the chord u0 → u1 cut into k equal pieces.
-    const auto deviation = [&](double u0, double u1, int k) {
-      double d = 0.0;
-      const double piece = (u1 - u0) / k;
-      for (int j = 0; j < k; ++j) {
-        const double a = u0 + j * piece, b = a + piece;
-        d = std::max(d, boundary.ChordDeviation(point(a), point(b), l0.loop, forward ? arc(a) : arc(b), piece));
-      }
-      return d;
-    };
-    double previous = 0.0;
-    for (size_t i = 1; i < n; ++i) {
-      const int v = loop[i];
-      double place = t[i];
-      if (!(*origin)[v].corner) {
-        const double lo = std::max(t[i] - max_slide, previous + kSlideMargin * (t[i] - previous));
-        const double hi = std::min(t[i] + max_slide, t[i + 1] - kSlideMargin * (t[i + 1] - t[i]));
-        if (lo < hi) {
-          int k = 1;
-          while (k < kMaxPieces && deviation(previous, lo, k) > tolerance) ++k;
-          const bool keep = k == 1 && t[i] >= lo && t[i] <= hi && deviation(previous, t[i], 1) <= tolerance;
-          if (!keep) {
-            double a = lo, b = hi;  // farthest place in [lo, hi] where k pieces are within tolerance
-            if (deviation(previous, hi, k) <= tolerance) {
-              a = hi;
-            } else {
-              for (int it = 0; it < 40; ++it) {
-                const double mid = 0.5 * (a + b);
-                (deviation(previous, mid, k) <= tolerance ? a : b) = mid;
-              }
-            }
-            place = a;
-          }
-        }
-      }
-      if (place != t[i]) {
-        const double angle_before = smallest_angle(v), edge_before = shortest_edge(v);
-        const Eigen::Vector3d old_position = (*position)[v];
-        Eigen::Vector3d p;
-        const QuadMeshVertex slid = boundary.PointAt(l0.loop, arc(place), &p);
-        (*position)[v] = p;
-        if (smallest_angle(v) < std::min(angle_before, kGoodAngle) || shortest_edge(v) < std::min(edge_before, min_edge)) {
-          (*position)[v] = old_position;
-          place = t[i];
-        } else {
-          (*origin)[v] = slid;
-          ++moved;
-        }
-      }
-      previous = place;
-    }
+  for (const auto& loop : MeshBoundaryLoops(face_of, *origin)) {
+    if (loop.size() < 3) continue;
+    moved += SlideLoop(boundary, loop, tolerance, max_slide, min_edge, shape, position, origin);
   }
   return moved;
+}
+
+// Cuts face [b, v1, ..., vr, a] (its edge a → b closes the loop) at the new vertex m by m – v_j
+// into [m, b, v1, ..., vj] and [vj, ..., vr, a, m], choosing j for: v_j not on the boundary,
+// the new edge at least min_edge, both angles ≥ kGoodAngle, most quads, the largest angle.
+void BestSplit(const std::vector<int>& loop, int m, const std::vector<Eigen::Vector3d>& position,
+               const std::vector<QuadMeshVertex>& origin, double min_edge, std::vector<int>* best1,
+               std::vector<int>* best2) {
+  const int r = static_cast<int>(loop.size()) - 2;
+  std::tuple<bool, bool, bool, int, double> best_key{false, false, false, -1, -INFINITY};
+  for (int j = 1; j <= r; ++j) {
+    std::vector<int> q1{m}, q2;
+    for (int i = 0; i <= j; ++i) q1.push_back(loop[i]);
+    for (int i = j; i <= r + 1; ++i) q2.push_back(loop[i]);
+    q2.push_back(m);
+    const double angle = std::min(ShapeAngle(position, q1), ShapeAngle(position, q2));
+    const bool long_enough = (position[loop[j]] - position[m]).norm() >= min_edge;
+    const std::tuple<bool, bool, bool, int, double> key{!origin[loop[j]].on_boundary, long_enough,
+                                                        angle >= kGoodAngle,
+                                                        int(q1.size() == 4) + int(q2.size() == 4), angle};
+    if (key > best_key) best_key = key, *best1 = q1, *best2 = q2;
+  }
+}
+
+// The polygon mesh of `faces` on `position`; a face OpenMesh refuses is counted in *rejected.
+PolyMesh BuildPolyMesh(const std::vector<Eigen::Vector3d>& position, const std::vector<std::vector<int>>& faces,
+                       int* rejected) {
+  PolyMesh refined;
+  for (const auto& q : position) refined.add_vertex(ToOpenMesh(q));
+  for (const auto& face : faces) {
+    std::vector<VertexHandle> handles;
+    for (const int v : face) handles.push_back(VertexHandle(v));
+    if (!refined.add_face(handles).is_valid()) ++*rejected;
+  }
+  return refined;
 }
 
 }  // namespace
@@ -326,21 +396,8 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     // into [m, b, v1, ..., vj] and [vj, ..., vr, a, m].
     std::vector<int> loop = faces[f];
     std::rotate(loop.begin(), std::find(loop.begin(), loop.end(), b), loop.end());
-    const int r = static_cast<int>(loop.size()) - 2;
-    std::tuple<bool, bool, bool, int, double> best_key{false, false, false, -1, -INFINITY};
     std::vector<int> best1, best2;
-    for (int j = 1; j <= r; ++j) {
-      std::vector<int> q1{m}, q2;
-      for (int i = 0; i <= j; ++i) q1.push_back(loop[i]);
-      for (int i = j; i <= r + 1; ++i) q2.push_back(loop[i]);
-      q2.push_back(m);
-      const double angle = std::min(ShapeAngle(position, q1), ShapeAngle(position, q2));
-      const bool long_enough = (position[loop[j]] - position[m]).norm() >= min_edge;
-      const std::tuple<bool, bool, bool, int, double> key{!origin[loop[j]].on_boundary, long_enough,
-                                                          angle >= kGoodAngle,
-                                                          int(q1.size() == 4) + int(q2.size() == 4), angle};
-      if (key > best_key) best_key = key, best1 = q1, best2 = q2;
-    }
+    BestSplit(loop, m, position, origin, min_edge, &best1, &best2);
     for (size_t k = 0; k < faces[f].size(); ++k) face_of.erase({faces[f][k], faces[f][(k + 1) % faces[f].size()]});
     faces[f] = best1;
     faces.push_back(best2);
@@ -353,14 +410,7 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
   out->stats.slid_boundary_vertices += slid;
   if (inserted == 0 && slid == 0) return 0;
 
-  PolyMesh refined;
-  for (const auto& q : position) refined.add_vertex(ToOpenMesh(q));
-  for (const auto& face : faces) {
-    std::vector<VertexHandle> handles;
-    for (const int v : face) handles.push_back(VertexHandle(v));
-    if (!refined.add_face(handles).is_valid()) ++out->stats.rejected_faces;
-  }
-  mesh = std::move(refined);
+  mesh = BuildPolyMesh(position, faces, &out->stats.rejected_faces);
   out->stats.refined_boundary_edges += inserted;
   return inserted;
 }

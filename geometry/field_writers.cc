@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "geometry/atomic_file.h"
+#include "base/atomic_file.h"
 
 namespace pqlayout {
 namespace {

@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "geometry/status.h"
+#include "base/status.h"
 #include "geometry/surface_model.h"
 
 namespace pqlayout {

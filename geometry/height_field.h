@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "geometry/planar_domain_mesher.h"
-#include "geometry/status.h"
+#include "base/status.h"
 #include "geometry/surface_generators.h"
 
 namespace pqlayout {

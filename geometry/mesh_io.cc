@@ -7,7 +7,7 @@
 
 #include <glog/logging.h>
 
-#include "geometry/atomic_file.h"
+#include "base/atomic_file.h"
 #include "geometry/mesh_readers.h"
 #include "geometry/mesh_validation.h"
 

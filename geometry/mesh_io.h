@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 
 #include "geometry/mesh.h"
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

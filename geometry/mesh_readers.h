@@ -15,7 +15,7 @@
 #include <string>
 
 #include "geometry/mesh_io.h"
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

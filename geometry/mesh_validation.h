@@ -4,7 +4,7 @@
 #pragma once
 
 #include "geometry/mesh_io.h"
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

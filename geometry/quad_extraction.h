@@ -42,7 +42,7 @@
 
 #include "geometry/mesh.h"
 #include "geometry/seams.h"
-#include "geometry/status.h"
+#include "base/status.h"
 #include "geometry/surface_model.h"
 
 namespace pqlayout {

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "geometry/mesh.h"
-#include "geometry/status.h"
+#include "base/status.h"
 #include "geometry/surface_model.h"
 
 namespace pqlayout {

@@ -68,6 +68,84 @@ int Find(std::vector<int>& parent, int x) {
   return x;
 }
 
+// The seam edges of `paths` (original edge → (path, halfedge in the path's direction), -1 for
+// no seam), after checking that every path is a chain of adjacent interior vertices, on no
+// other path, ending on the boundary.
+Status SeamEdgesOfPaths(const SurfaceModel& surface, const std::vector<std::vector<int>>& paths,
+                        std::vector<std::pair<int, HalfedgeHandle>>* seam_of_edge) {
+  const TriMesh& mesh = surface.mesh();
+  const int nv = surface.num_vertices();
+  std::vector<int> count(nv, 0);
+  seam_of_edge->assign(mesh.n_edges(), {-1, HalfedgeHandle()});
+  for (size_t p = 0; p < paths.size(); ++p) {
+    const auto& path = paths[p];
+    const std::string where = "seams: path " + std::to_string(p) + ": ";
+    if (path.size() < 2) return Status::InvalidInput(where + "fewer than 2 vertices");
+    for (const int v : path) {
+      if (v < 0 || v >= nv) return Status::InvalidInput(where + "vertex " + std::to_string(v) + " out of range");
+      if (++count[v] > 1) return Status::InvalidInput(where + "vertex " + std::to_string(v) + " is on two paths");
+    }
+    if (!surface.is_boundary(path.back())) return Status::InvalidInput(where + "does not end on the boundary");
+    for (size_t k = 0; k + 1 < path.size(); ++k) {
+      if (k > 0 && surface.is_boundary(path[k]))
+        return Status::InvalidInput(where + "touches the boundary at vertex " + std::to_string(path[k]));
+      const auto h = mesh.find_halfedge(VertexHandle(path[k]), VertexHandle(path[k + 1]));
+      if (!h.is_valid()) return Status::InvalidInput(where + "vertices " + std::to_string(path[k]) + " and " +
+                                                     std::to_string(path[k + 1]) + " are not adjacent");
+      if (mesh.is_boundary(mesh.edge_handle(h))) return Status::InvalidInput(where + "runs along the boundary");
+      (*seam_of_edge)[mesh.edge_handle(h).idx()] = {static_cast<int>(p), h};
+    }
+  }
+  return Status::Ok();
+}
+
+// Corner 3f + k of face f where its k-th vertex is v; -1 if v is not a vertex of f.
+int CornerOf(const SurfaceModel& surface, int f, int v) {
+  const auto ids = surface.face_vertices(f);
+  for (int k = 0; k < 3; ++k)
+    if (ids[k] == v) return 3 * f + k;
+  return -1;
+}
+
+// Union-find forest of the corners (3f + k), joined across every interior edge that is no
+// seam; read the classes with Find.
+std::vector<int> CornerClasses(const SurfaceModel& surface,
+                               const std::vector<std::pair<int, HalfedgeHandle>>& seam_of_edge) {
+  const TriMesh& mesh = surface.mesh();
+  std::vector<int> parent(3 * surface.num_faces());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const auto e : mesh.edges()) {
+    if (mesh.is_boundary(e) || seam_of_edge[e.idx()].first >= 0) continue;
+    const auto h = mesh.halfedge_handle(e, 0), o = mesh.opposite_halfedge_handle(h);
+    const int f = mesh.face_handle(h).idx(), g = mesh.face_handle(o).idx();
+    for (const auto v : {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h)})
+      parent[Find(parent, CornerOf(surface, f, v.idx()))] = Find(parent, CornerOf(surface, g, v.idx()));
+  }
+  return parent;
+}
+
+// Adds face f (a, b, c) to the cut mesh with the original's corner order: its circulation
+// starts at a.
+Status AddFaceInOrder(int f, VertexHandle a, VertexHandle b, VertexHandle c, TriMesh* cut_mesh) {
+  const auto face = cut_mesh->add_face(a, b, c);
+  if (!face.is_valid() || face.idx() != f)
+    return Status::Internal("seams: face " + std::to_string(f) + " could not be rebuilt in the cut surface");
+  // Corner order as in the original: start the face's circulation at the right halfedge.
+  for (const auto h : cut_mesh->fh_range(face)) {
+    if (cut_mesh->to_vertex_handle(h) != a) continue;
+    cut_mesh->set_halfedge_handle(face, h);
+    break;
+  }
+  if (cut_mesh->fv_begin(face)->idx() != a.idx()) {
+    for (const auto h : cut_mesh->fh_range(face)) {
+      if (cut_mesh->from_vertex_handle(h) != a) continue;
+      cut_mesh->set_halfedge_handle(face, h);
+      break;
+    }
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 std::vector<std::vector<int>> RouteSeams(const SurfaceModel& surface, const std::vector<double>& face_weight,
@@ -121,44 +199,12 @@ Status SeamCut::Build(const SurfaceModel& surface, std::vector<std::vector<int>>
   const int nv = surface.num_vertices(), nf = surface.num_faces();
   auto cut = std::make_unique<SeamCut>();
   // Seam edges: original edge → (path, halfedge in the path's direction).
-  std::vector<int> count(nv, 0);
-  std::vector<std::pair<int, HalfedgeHandle>> seam_of_edge(mesh.n_edges(), {-1, HalfedgeHandle()});
-  for (size_t p = 0; p < paths.size(); ++p) {
-    const auto& path = paths[p];
-    const std::string where = "seams: path " + std::to_string(p) + ": ";
-    if (path.size() < 2) return Status::InvalidInput(where + "fewer than 2 vertices");
-    for (const int v : path) {
-      if (v < 0 || v >= nv) return Status::InvalidInput(where + "vertex " + std::to_string(v) + " out of range");
-      if (++count[v] > 1) return Status::InvalidInput(where + "vertex " + std::to_string(v) + " is on two paths");
-    }
-    if (!surface.is_boundary(path.back())) return Status::InvalidInput(where + "does not end on the boundary");
-    for (size_t k = 0; k + 1 < path.size(); ++k) {
-      if (k > 0 && surface.is_boundary(path[k]))
-        return Status::InvalidInput(where + "touches the boundary at vertex " + std::to_string(path[k]));
-      const auto h = mesh.find_halfedge(VertexHandle(path[k]), VertexHandle(path[k + 1]));
-      if (!h.is_valid()) return Status::InvalidInput(where + "vertices " + std::to_string(path[k]) + " and " +
-                                                     std::to_string(path[k + 1]) + " are not adjacent");
-      if (mesh.is_boundary(mesh.edge_handle(h))) return Status::InvalidInput(where + "runs along the boundary");
-      seam_of_edge[mesh.edge_handle(h).idx()] = {static_cast<int>(p), h};
-    }
-  }
+  std::vector<std::pair<int, HalfedgeHandle>> seam_of_edge;
+  PQ_RETURN_IF_ERROR(SeamEdgesOfPaths(surface, paths, &seam_of_edge));
   // Corners (3f + k) joined across every interior edge that is no seam: each class is a vertex
   // of the cut surface.
-  const auto corner = [&](int f, int v) {
-    const auto ids = surface.face_vertices(f);
-    for (int k = 0; k < 3; ++k)
-      if (ids[k] == v) return 3 * f + k;
-    return -1;
-  };
-  std::vector<int> parent(3 * nf);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const auto e : mesh.edges()) {
-    if (mesh.is_boundary(e) || seam_of_edge[e.idx()].first >= 0) continue;
-    const auto h = mesh.halfedge_handle(e, 0), o = mesh.opposite_halfedge_handle(h);
-    const int f = mesh.face_handle(h).idx(), g = mesh.face_handle(o).idx();
-    for (const auto v : {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h)})
-      parent[Find(parent, corner(f, v.idx()))] = Find(parent, corner(g, v.idx()));
-  }
+  const auto corner = [&](int f, int v) { return CornerOf(surface, f, v); };
+  std::vector<int> parent = CornerClasses(surface, seam_of_edge);
   std::vector<int> vertex_of_class(3 * nf, -1), cut_vertex(3 * nf);
   cut->first_copy_.assign(nv, -1);
   TriMesh cut_mesh;
@@ -176,23 +222,9 @@ Status SeamCut::Build(const SurfaceModel& surface, std::vector<std::vector<int>>
     }
   }
   for (int f = 0; f < nf; ++f) {
-    const VertexHandle a(cut_vertex[3 * f]), b(cut_vertex[3 * f + 1]), c(cut_vertex[3 * f + 2]);
-    const auto face = cut_mesh.add_face(a, b, c);
-    if (!face.is_valid() || face.idx() != f)
-      return Status::Internal("seams: face " + std::to_string(f) + " could not be rebuilt in the cut surface");
-    // Corner order as in the original: start the face's circulation at the right halfedge.
-    for (const auto h : cut_mesh.fh_range(face)) {
-      if (cut_mesh.to_vertex_handle(h) != a) continue;
-      cut_mesh.set_halfedge_handle(face, h);
-      break;
-    }
-    if (cut_mesh.fv_begin(face)->idx() != a.idx()) {
-      for (const auto h : cut_mesh.fh_range(face)) {
-        if (cut_mesh.from_vertex_handle(h) != a) continue;
-        cut_mesh.set_halfedge_handle(face, h);
-        break;
-      }
-    }
+    PQ_RETURN_IF_ERROR(
+        AddFaceInOrder(f, VertexHandle(cut_vertex[3 * f]), VertexHandle(cut_vertex[3 * f + 1]),
+                       VertexHandle(cut_vertex[3 * f + 2]), &cut_mesh));
   }
   cut->cut_ = std::make_unique<SurfaceModel>(std::move(cut_mesh));
   const TriMesh& cm = cut->cut_->mesh();

@@ -21,7 +21,7 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/status.h"
+#include "base/status.h"
 #include "geometry/surface_model.h"
 
 namespace pqlayout {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "geometry/mesh.h"
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

@@ -6,6 +6,17 @@
 #include <sstream>
 
 namespace pqlayout {
+
+const char* BoundaryConditionName(BoundaryCondition c) {
+  switch (c) {
+    case BoundaryCondition::kFixed: return "fixed";
+    case BoundaryCondition::kFree: return "free";
+    case BoundaryCondition::kClamped: return "clamped";
+    case BoundaryCondition::kSliding: return "sliding";
+  }
+  return "?";
+}
+
 namespace {
 
 // An id and where it was written: "" for the config (the rule's origin says where), or

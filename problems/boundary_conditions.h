@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "geometry/surface_model.h"
-#include "problems/config.h"
+#include "problems/options.h"
 
 namespace pqlayout {
 

@@ -17,7 +17,7 @@
 #include <Eigen/Core>
 
 #include "geometry/surface_model.h"
-#include "problems/config.h"
+#include "problems/options.h"
 
 namespace pqlayout {
 

@@ -23,7 +23,7 @@
 
 #include "geometry/seams.h"
 #include "geometry/surface_model.h"
-#include "problems/config.h"
+#include "problems/options.h"
 #include "problems/guidance.h"
 
 namespace pqlayout {

@@ -10,7 +10,7 @@
 
 #include "geometry/surface_model.h"
 #include "problems/boundary_conditions.h"
-#include "problems/config.h"
+#include "problems/options.h"
 
 namespace pqlayout {
 

@@ -11,12 +11,19 @@
 
 #include <vector>
 
+#include "base/status.h"
 #include "geometry/surface_model.h"
+#include "problems/levelset.h"
 
 namespace pqlayout {
 
 // s as above; 1 if the Jacobian vanishes everywhere.
 double PanelAreaScale(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
                       double h);
+
+// Scales φ, ψ of solution by `factor` (s above). With seams the offsets become round(factor·a)
+// and φ, ψ are refitted to the scaled gradients under the rounded transitions (one Poisson
+// solve each), so that level lines still meet across the seams.
+Status ScaleLevelSets(double factor, double h, LevelSetSolution* solution);
 
 }  // namespace pqlayout

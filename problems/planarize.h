@@ -31,8 +31,7 @@
 
 #include "geometry/quad_extraction.h"
 #include "geometry/surface_model.h"
-#include "problems/config.h"
-#include "problems/output_files.h"
+#include "problems/options.h"
 
 namespace pqlayout {
 
@@ -51,9 +50,6 @@ struct PlanarizeReport {
 // Planarises mesh in place (its origin flags: on_boundary, corner).
 Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double spacing,
                      ExtractedMesh* mesh, PlanarizeReport* report);
-
-// Writes NAME.obj and NAME.ply (faces coloured by δ: blue at 0, red at ≥ 10 × target).
-Status WriteShellMesh(const PolyMesh& mesh, double target_delta, OutputFiles* out, const std::string& name);
 
 // δ of every face of a polygon mesh.
 std::vector<double> FacePlanarity(const PolyMesh& mesh);

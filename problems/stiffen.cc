@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "geometry/closest_point.h"
-#include "geometry/interrupt.h"
+#include "base/interrupt.h"
 #include "geometry/planarity.h"
 #include "problems/grid_frame.h"
 #include "problems/residuals/edge_length_residual.h"

@@ -47,7 +47,7 @@
 
 #include "geometry/quad_extraction.h"
 #include "geometry/surface_model.h"
-#include "problems/config.h"
+#include "problems/options.h"
 #include "solver/frame_analysis.h"
 
 namespace pqlayout {

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/interrupt.h"
+#include "base/interrupt.h"
 #include "geometry/planarity.h"
 #include "problems/residuals/anchor_residual.h"
 #include "problems/residuals/planarity_budget_residual.h"

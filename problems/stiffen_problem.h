@@ -12,7 +12,7 @@
 
 #include "geometry/closest_point.h"
 #include "geometry/quad_extraction.h"
-#include "problems/config.h"
+#include "problems/options.h"
 #include "problems/grid_frame.h"
 #include "solver/framed_point_cost.h"
 

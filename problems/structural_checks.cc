@@ -6,8 +6,6 @@
 #include <chrono>
 #include <numeric>
 
-#include "geometry/field_writers.h"
-#include "problems/figures.h"
 #include "solver/member_checks.h"
 
 namespace pqlayout {
@@ -79,33 +77,6 @@ nlohmann::json StructuralChecks::ToJson(const GridFrame& frame) const {
   j["span"] = span;
   j["span_over_deflection"] = deflection_max > 0.0 ? nlohmann::json(span / deflection_max) : nlohmann::json(nullptr);
   return j;
-}
-
-Status WriteStructuralChecks(const SurfaceModel& surface, const PolyMesh& mesh, const GridFrame& frame,
-                             const StructuralChecks& c, const std::string& guidance, OutputFiles* out) {
-  PQ_RETURN_IF_ERROR(WriteUtilisationFigure(surface, mesh, frame.member_vertices, c.utilisation,
-                                            "Member utilisation η (" + guidance + " guidance)",
-                                            out->Path("figures/utilisation.svg")));
-  if (!c.buckling.buckles) return Status::Ok();
-  const size_t n = frame.node_of.size();
-  std::vector<std::vector<double>> columns;
-  std::vector<std::string> header{"id"};
-  for (size_t k = 0; k < c.buckling.modes.size(); ++k)
-    for (const char* axis : {"ux", "uy", "uz"}) header.push_back("mode" + std::to_string(k + 1) + "_" + axis);
-  columns.resize(header.size() - 1, std::vector<double>(n));
-  std::vector<double> amplitude(n);
-  for (size_t v = 0; v < n; ++v) {
-    for (size_t k = 0; k < c.buckling.modes.size(); ++k)
-      for (int d = 0; d < 3; ++d) columns[3 * k + d][v] = c.buckling.modes[k][frame.node_of[v]][d];
-    amplitude[v] = c.buckling.modes[0][frame.node_of[v]].head<3>().norm();
-  }
-  std::vector<const std::vector<double>*> pointers;
-  for (const auto& column : columns) pointers.push_back(&column);
-  PQ_RETURN_IF_ERROR(WriteCsvTable(header, pointers, out->Path("analysis/buckling_modes.csv")));
-  std::ostringstream title;
-  title.precision(3);
-  title << "First buckling mode, λ = " << c.buckling.factors.front() << " (" << guidance << " guidance)";
-  return WriteBucklingFigure(surface, mesh, amplitude, title.str(), out->Path("figures/buckling.svg"));
 }
 
 }  // namespace pqlayout

@@ -16,9 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "problems/config.h"
+#include "problems/options.h"
 #include "problems/grid_frame.h"
-#include "problems/output_files.h"
 #include "solver/frame_buckling.h"
 
 namespace pqlayout {
@@ -36,9 +35,5 @@ struct StructuralChecks {
 // which checks the frame before and after, logs its own summary).
 Status RunStructuralChecks(const GridFrame& frame, const FrameResult& linear, const AnalysisOptions& a,
                            StructuralChecks* checks, bool log = true);
-
-// analysis/buckling_modes.csv, figures/buckling.svg (first mode), figures/utilisation.svg.
-Status WriteStructuralChecks(const SurfaceModel& surface, const PolyMesh& mesh, const GridFrame& frame,
-                             const StructuralChecks& checks, const std::string& guidance, OutputFiles* out);
 
 }  // namespace pqlayout

@@ -9,7 +9,7 @@
 // std::bad_alloc becomes MemoryError (pybind11), other C++ exceptions RuntimeError.
 //
 // Threads and the GIL: the run releases the GIL. The progress callback and the stop poll take
-// it back briefly: the poll (geometry/interrupt.h) runs before every stage and at every solver
+// it back briefly: the poll (base/interrupt.h) runs before every stage and at every solver
 // iteration and calls PyErr_CheckSignals, so Ctrl-C in the interpreter stops the run within
 // one iteration and raises KeyboardInterrupt; an exception raised by the progress callback
 // stops it the same way and is re-raised. The pipeline keeps process-wide state (the stop
@@ -31,10 +31,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/interrupt.h"
-#include "problems/build_info.h"
-#include "problems/config.h"
-#include "problems/pipeline.h"
+#include "base/interrupt.h"
+#include "pipeline/build_info.h"
+#include "pipeline/config.h"
+#include "pipeline/pipeline.h"
 #include "python/module_arrays.h"
 
 namespace py = pybind11;

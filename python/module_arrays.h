@@ -11,7 +11,7 @@
 
 #include <pybind11/pybind11.h>
 
-#include "problems/pipeline.h"
+#include "pipeline/pipeline.h"
 
 namespace pqlayout::python {
 

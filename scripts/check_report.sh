@@ -17,7 +17,7 @@
 # URL, so the canvas can read it) to check it has at least MIN_PAGE_INK non-white pixels
 # and MIN_PAGE_COLOURS distinct colours.
 #
-# The 3D view (problems/report_view3d.h), where the page has one, measures itself the same
+# The 3D view (report/report_view3d.h), where the page has one, measures itself the same
 # way once drawn — its WebGL canvas copied onto a 2D canvas: non-white fraction ("ink") and
 # distinct colours — then turns its camera by 30° about the vertical, draws again and counts
 # the pixels that changed ("rotated"), and writes the numbers into the section's data-check.

@@ -8,7 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libspectra-dev         # Lanczos eigensolver on Eigen: the buckling factors (solver/frame_buckling.h)
   calculix-ccx           # ccx: the CalculiX cross-check in tests/calculix_test.cc (skipped without it)
-  libjs-three            # three.js r111 + OrbitControls, compiled into the binary for report.html's 3D view (problems/report_view3d.h)
+  libjs-three            # three.js r111 + OrbitControls, compiled into the binary for report.html's 3D view (report/report_view3d.h)
   chromium               # headless browser for the report check (tests/report_check_test, scripts/check_report.sh)
   libopenblas-dev        # the one BLAS/LAPACK pqlayout links (CMake BLA_VENDOR=OpenBLAS); see solver/numerics.h
   python3-dev pybind11-dev python3-numpy python3-pytest  # `import pqlayout` (python/) and its pytest suite

@@ -30,7 +30,7 @@
 #include <map>
 #include <string>
 
-#include "geometry/status.h"
+#include "base/status.h"
 #include "solver/frame_analysis.h"
 
 namespace pqlayout {

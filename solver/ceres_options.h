@@ -9,13 +9,13 @@
 
 #include <ceres/ceres.h>
 
-#include "geometry/interrupt.h"
+#include "base/interrupt.h"
 #include "solver/numerics.h"
 
 namespace pqlayout {
 
 // Ends a solve at the next iteration once SIGINT or SIGTERM has been received, or an
-// embedding's poll asks to stop (geometry/interrupt.h): Ceres returns USER_FAILURE, whose solution is not usable, so the
+// embedding's poll asks to stop (base/interrupt.h): Ceres returns USER_FAILURE, whose solution is not usable, so the
 // stage fails and the run ends as interrupted within one iteration.
 class InterruptCallback : public ceres::IterationCallback {
  public:

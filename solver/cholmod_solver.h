@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "geometry/status.h"
+#include "base/status.h"
 
 namespace pqlayout {
 

@@ -14,7 +14,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/Geometry>
 
-#include "geometry/status.h"
+#include "base/status.h"
 #include "solver/beam_element.h"
 
 namespace pqlayout {

@@ -13,7 +13,7 @@
 
 #include <vector>
 
-#include "geometry/status.h"
+#include "base/status.h"
 #include "solver/frame_analysis.h"
 
 namespace pqlayout {

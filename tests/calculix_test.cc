@@ -17,7 +17,7 @@
 #include <random>
 #include <sstream>
 
-#include "problems/stages.h"
+#include "pipeline/stages.h"
 #include "solver/calculix_export.h"
 #include "solver/frame_analysis.h"
 #include "solver/frame_buckling.h"

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "problems/config.h"
+#include "pipeline/config.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {

@@ -1,6 +1,6 @@
 // The roof corpus (issue 17; examples/corpus, benchmarks/corpus.md): every roof through
 // planarisation with both guidance sources, defaults only, each layout target of
-// report.json "targets" (problems/layout_targets.h) either met or a miss known today, which
+// report.json "targets" (pipeline/layout_targets.h) either met or a miss known today, which
 // must keep its one-line cause and may not get worse than its bound (the value measured on
 // 2026-12-02 with a margin: 25 % for angles, CVs and areas, 0.05 for the quad fraction,
 // 1.5× + 1 for counts). A regression on any roof turns this red; a fix lets a miss be struck
@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "problems/config.h"
-#include "problems/pipeline.h"
+#include "pipeline/config.h"
+#include "pipeline/pipeline.h"
 
 namespace pqlayout {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "problems/config.h"
-#include "problems/pipeline.h"
+#include "pipeline/config.h"
+#include "pipeline/pipeline.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {

@@ -9,8 +9,8 @@
 #include "geometry/mesh_validation.h"
 #include "problems/boundary_conditions.h"
 #include "problems/guidance.h"
-#include "problems/layout_checks.h"
-#include "problems/output_files.h"
+#include "pipeline/layout_checks.h"
+#include "base/output_files.h"
 #include "tests/test_cli.h"
 #include "tests/test_meshes.h"
 

@@ -7,9 +7,9 @@
 
 #include "geometry/differential_operators.h"
 #include "geometry/surface_generators.h"
-#include "problems/config.h"
+#include "pipeline/config.h"
 #include "problems/levelset.h"
-#include "problems/pipeline.h"
+#include "pipeline/pipeline.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {

@@ -8,9 +8,9 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "geometry/interrupt.h"
-#include "problems/output_files.h"
-#include "problems/sweep.h"
+#include "base/interrupt.h"
+#include "base/output_files.h"
+#include "cli/sweep.h"
 #include "tests/run_helpers.h"
 #include "tests/test_meshes.h"
 

@@ -2,7 +2,7 @@
 // passes with every figure measured and a screenshot written; the same report with one
 // figure replaced by an empty frame (title, colour bar, scale bar, no data) or with a figure
 // missing fails and names the figure; a page whose figures claim to be fine but renders
-// blank fails on its screenshot. The 3D view (problems/report_view3d.h): the real report's
+// blank fails on its screenshot. The 3D view (report/report_view3d.h): the real report's
 // passes its self-check (drawn, not blank, changes when the camera turns); one whose data
 // hold no faces, or whose data cannot be read, fails and names the 3D view. Skipped, with a
 // message, where /usr/bin/chromium is absent.
@@ -21,10 +21,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/svg_canvas.h"
-#include "problems/output_files.h"
-#include "problems/report_html.h"
-#include "problems/report_view3d.h"
+#include "report/svg_canvas.h"
+#include "base/output_files.h"
+#include "report/report_html.h"
+#include "report/report_view3d.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {

@@ -14,7 +14,7 @@
 
 #include "geometry/mesh.h"
 #include "geometry/planar_domain_mesher.h"
-#include "geometry/status.h"
+#include "base/status.h"
 #include "geometry/surface_generators.h"
 #include "tests/generator_measures.h"
 

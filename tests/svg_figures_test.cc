@@ -22,9 +22,9 @@
 #include "geometry/level_lines.h"
 #include "geometry/streamlines.h"
 #include "geometry/surface_generators.h"
-#include "geometry/svg_canvas.h"
+#include "report/svg_canvas.h"
 #include "geometry/planarity.h"
-#include "problems/figures.h"
+#include "report/figures.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {

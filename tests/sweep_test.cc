@@ -14,8 +14,8 @@
 #include <set>
 #include <sstream>
 
-#include "problems/sweep.h"
-#include "problems/sweep_figures.h"
+#include "cli/sweep.h"
+#include "report/sweep_figures.h"
 #include "tests/run_helpers.h"
 #include "tests/test_meshes.h"
 
@@ -337,7 +337,7 @@ TEST(SweepCli, AFailedRunIsARowWithItsError) {
 
 // The run's folder holds a complete earlier run of another config (rise 3); the sweep's run
 // (rise 4) is killed before each unlink and rename of its commit in turn
-// (PQLAYOUT_TEST_FAIL_COMMIT_AFTER, problems/output_files.h). The sweep must never count it as
+// (PQLAYOUT_TEST_FAIL_COMMIT_AFTER, base/output_files.h). The sweep must never count it as
 // finished, and the earlier run must stay complete or lose its report.json.
 TEST(SweepCli, ARunKilledWhileCommittingIsNeverCountedFinished) {
   const auto dir = testing::TempDir();

@@ -1,0 +1,457 @@
+#include "pipeline/config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "geometry/surface_generators.h"
+#include "pipeline/config_rules.h"
+#include "pipeline/config_yaml.h"
+
+namespace pqlayout {
+namespace {
+
+using config_yaml::Describe;
+using config_yaml::FormatNumber;
+using config_yaml::KeyName;
+using config_yaml::ScalarAs;
+using nlohmann::json;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A closed or open interval for numeric keys. A `cap` interval is a one-sided range whose
+// upper end only keeps out absurd values: its messages name the bound that was crossed.
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+  bool cap = false;
+  bool AboveLow(double v) const { return lo_open ? v > lo : v >= lo; }
+  bool Contains(double v) const { return AboveLow(v) && (hi_open ? v < hi : v <= hi); }
+  std::string Describe(double v) const {
+    std::ostringstream s;
+    if (hi == kInf || (cap && !AboveLow(v))) s << (lo_open ? "> " : ">= ") << lo;
+    else if (lo == -kInf || cap) s << (hi_open ? "< " : "<= ") << hi;
+    else s << "in " << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");
+    return s.str();
+  }
+};
+// Every number has a finite upper bound: a value like 1e300 is a typo, and downstream it
+// overflows (v_z = q L² / λ_m, costs of weight × residual²) or reaches a float-to-int cast.
+Range Positive(double hi) { return {0.0, hi, true, false, true}; }
+Range NonNegative(double hi) { return {0.0, hi, false, false, true}; }
+Range AtLeast(double lo, double hi) { return {lo, hi, false, false, true}; }
+const Range kFraction{0.0, 1.0, false, false};
+constexpr double kMaxLength = 1e5;     // m: 100 km, no roof is larger
+constexpr double kMaxWeight = 1e6;     // residual weights (the README's sweeps stay below 1e4)
+constexpr double kMaxPressure = 1e7;   // N/m²: 1000 t per m²
+constexpr double kMaxModulus = 1e15;   // Pa, N/m, N·m
+constexpr double kMinSection = 1e-4;   // m: thinner members make the frame singular, not light
+
+// "key: reason", or "key[1].select: reason" when the reason starts with a list index.
+std::string KeyError(const std::string& key, const std::string& reason) {
+  return key + (reason.rfind('[', 0) == 0 ? "" : ": ") + reason;
+}
+
+// The schema: every key bound to a field. Setters return "" or the reason a value is refused.
+struct KeyEntry {
+  std::string key, type, comment;
+  std::function<std::string(const YAML::Node&)> set;
+  std::function<json()> get;
+};
+
+class KeyTable {
+ public:
+  explicit KeyTable(Config* c);
+  KeyTable(const KeyTable&) = delete;
+
+  const KeyEntry* Find(const std::string& key) const {
+    for (const auto& e : entries_)
+      if (e.key == key) return &e;
+    return nullptr;
+  }
+  bool IsSection(const std::string& prefix) const {
+    for (const auto& e : entries_)
+      if (e.key.rfind(prefix + ".", 0) == 0) return true;
+    return false;
+  }
+  std::string Suggest(const std::string& key) const;
+  const std::vector<KeyEntry>& entries() const { return entries_; }
+  void set_base_dir(std::string dir) { base_dir_ = std::move(dir); }
+  // Where values come from, for the origin of boundary rules ("cfg.yaml" with lines, or "--set").
+  void set_source(std::string name, bool with_lines) {
+    source_name_ = std::move(name);
+    source_lines_ = with_lines;
+  }
+  std::string ResolvePath(const std::string& p) const {
+    if (p.empty() || std::filesystem::path(p).is_absolute() || base_dir_.empty()) return p;
+    return (std::filesystem::path(base_dir_) / p).lexically_normal().string();
+  }
+
+ private:
+  void Number(const std::string& key, double* f, Range r, const std::string& comment) {
+    entries_.push_back({key, "number", comment, [f, r](const YAML::Node& n) -> std::string {
+      double v;
+      if (!ScalarAs(n, &v)) return "expected a number, got " + Describe(n);
+      if (!std::isfinite(v)) return "must be a finite number";
+      if (!r.Contains(v)) return "must be " + r.Describe(v) + " (got " + FormatNumber(v) + ")";
+      *f = v;
+      return "";
+    }, [f] { return json(*f); }});
+  }
+  void Integer(const std::string& key, int* f, int lo, int hi, const std::string& comment) {
+    entries_.push_back({key, "integer", comment, [f, lo, hi](const YAML::Node& n) -> std::string {
+      int v;
+      if (!ScalarAs(n, &v)) return "expected an integer, got " + Describe(n);
+      if (v < lo || v > hi)
+        return "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " + std::to_string(v) + ")";
+      *f = v;
+      return "";
+    }, [f] { return json(*f); }});
+  }
+  void Bool(const std::string& key, bool* f, const std::string& comment) {
+    entries_.push_back({key, "boolean", comment, [f](const YAML::Node& n) -> std::string {
+      bool v;
+      if (!ScalarAs(n, &v)) return "expected true or false, got " + Describe(n);
+      *f = v;
+      return "";
+    }, [f] { return json(*f); }});
+  }
+  void Path(const std::string& key, std::string* f, const std::string& comment) {
+    entries_.push_back({key, "path", comment, [this, f](const YAML::Node& n) -> std::string {
+      if (n.IsNull()) { f->clear(); return ""; }
+      if (!n.IsScalar()) return "expected a file path, got " + Describe(n);
+      *f = ResolvePath(n.Scalar());
+      return "";
+    }, [f] { return json(*f); }});
+  }
+  void Choice(const std::string& key, std::string* f, std::vector<std::string> allowed,
+              const std::string& comment) {
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : " | ") + (a.empty() ? "\"\"" : a);
+    entries_.push_back({key, list, comment, [f, allowed, list](const YAML::Node& n) -> std::string {
+      std::string v;
+      if (n.IsNull()) v.clear();
+      else if (!ScalarAs(n, &v)) return "expected one of " + list + ", got " + Describe(n);
+      if (std::find(allowed.begin(), allowed.end(), v) == allowed.end())
+        return "unknown value '" + v + "' (expected " + list + ")";
+      *f = v;
+      return "";
+    }, [f] { return json(*f); }});
+  }
+  void Condition(const std::string& key, BoundaryCondition* f, const std::string& comment);
+  void Rules(const std::string& key, std::vector<BoundaryRule>* f, const std::string& comment);
+
+  std::vector<KeyEntry> entries_;
+  std::string base_dir_, source_name_;
+  bool source_lines_ = false;
+};
+
+void KeyTable::Condition(const std::string& key, BoundaryCondition* f, const std::string& comment) {
+  entries_.push_back({key, kConditionList, comment, [f](const YAML::Node& n) -> std::string {
+    if (!ParseCondition(n, f)) return "expected one of " + std::string(kConditionList) + ", got " + Describe(n);
+    return "";
+  }, [f] { return json(BoundaryConditionName(*f)); }});
+}
+
+void KeyTable::Rules(const std::string& key, std::vector<BoundaryRule>* f, const std::string& comment) {
+  entries_.push_back({key, "list", comment, [this, f](const YAML::Node& n) -> std::string {
+    const RuleSource source{source_name_, source_lines_, [this](const std::string& p) { return ResolvePath(p); }};
+    return ParseBoundaryRules(n, source, f);
+  }, [f] { return BoundaryRulesToJson(*f); }});
+}
+
+// Long on purpose: one flat line per config key, in the order of the config reference.
+KeyTable::KeyTable(Config* c) {
+  Integer("threads", &c->threads, 1, 256,
+          "threads of Ceres, OpenBLAS and OpenMP; 1 (default) gives bit-identical results on every machine, more may not");
+  auto& s = c->surface;
+  Path("surface.file", &s.file, "reference mesh (OBJ, PLY, OFF or STL; metres); relative paths are relative to the config file");
+  std::vector<std::string> generators = {""};
+  for (const auto& name : GeneratorNames()) generators.push_back(name);
+  Choice("surface.generator", &s.generator, generators,
+         "built-in reference surface, used when surface.file is empty (the corpus roofs: examples/corpus)");
+  Number("surface.edge_length", &s.edge_length, Positive(kMaxLength), "generator: target triangle edge length, m");
+  Number("surface.width", &s.width, Positive(kMaxLength), "generator: x extent, m (disk, annulus: outer diameter)");
+  Number("surface.depth", &s.depth, Positive(kMaxLength), "generator: y extent, m (annulus: inner diameter)");
+  Number("surface.rise", &s.rise, NonNegative(kMaxLength), "generator: crown height above the supports (or relief), m; not for plane, disk, annulus");
+
+  Condition("boundary.default", &c->boundary.default_condition, "support of every boundary vertex unless a rule overrides it");
+  Rules("boundary.rules", &c->boundary.rules,
+        "list of {select, condition}, applied in order; select: all | outer | inner | corners | {loop: N} | "
+        "{box: [xmin, ymin, zmin, xmax, ymax, zmax]} | {ids: [...]} | {ids_file: PATH}");
+
+  Number("load.q", &c->load.q, Positive(kMaxPressure), "dead load per area for the membrane solve, N/m²");
+  Number("membrane.stiffness", &c->membrane.stiffness, AtLeast(1e-3, kMaxModulus), "λ_m, membrane stiffness, N/m: v scales with 1/λ_m; the strain directions depend on it only through ε's quadratic term ½∇v∇vᵀ");
+  Number("membrane.bending", &c->membrane.bending, NonNegative(kMaxModulus), "λ_b, bending stiffness, N·m (0 = pure membrane, as in the paper)");
+
+  auto& g = c->guidance;
+  Choice("guidance.source", &g.source, {"strain", "curvature", "file"},
+         "guidance field: principal strain (the paper), principal curvature (the reference layout) or a CSV file");
+  Number("guidance.threshold", &g.threshold, kFraction, "no alignment where |ε_max| < threshold × max |ε_max|");
+  Number("guidance.ramp", &g.ramp, kFraction, "alignment weight ramps from 0 to 1 over [threshold, threshold + ramp] × max");
+  Path("guidance.file", &g.file, "guidance.source = file: per-face CSV id,dx,dy,dz[,weight]");
+
+  Number("layout.spacing", &c->layout.spacing, Positive(kMaxLength), "h, distance between neighbouring level lines, m");
+  Choice("layout.density", &c->layout.density, {"auto", "spacing", "panel_area"},
+         "spacing: level lines h apart; panel_area: φ, ψ then scaled together so that the mean panel area is h² (equal node counts for layouts that cross at different angles); auto: panel_area in `compare`, spacing otherwise");
+  Integer("layout.max_panels", &c->layout.max_panels, 1, 100000000,
+          "refuse a layout.spacing that would give more panels than this, estimated as the surface's area / h² "
+          "(the level-set solve's and the extraction's time and memory grow with it)");
+
+  auto& lw = c->levelset.weights;
+  Number("levelset.weights.alignment", &lw.alignment, NonNegative(kMaxWeight), "φ's level lines follow the guidance field");
+  Number("levelset.weights.spacing", &lw.spacing, Positive(kMaxWeight),
+         "even spacing: h|∇φ| = 1, h|∇ψ| = 1 (> 0: without it nothing keeps the level lines apart)");
+  Number("levelset.weights.smoothness", &lw.smoothness, NonNegative(kMaxWeight), "gradient difference across interior edges");
+  Number("levelset.weights.conjugacy", &lw.conjugacy, NonNegative(kMaxWeight), "the two families are conjugate: II(n×∇φ, n×∇ψ) = 0");
+  Number("levelset.weights.transversality", &lw.transversality, NonNegative(kMaxWeight), "crossing angle of the families ≥ levelset.min_angle");
+  Number("levelset.min_angle", &c->levelset.min_angle, Range{0.0, 90.0, true, true}, "minimum crossing angle of the two families, degrees");
+  Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000, "Ceres iterations of the φ solve and of the ψ solve");
+  Integer("levelset.joint_iterations", &c->levelset.joint_iterations, 0, 100000,
+          "Ceres iterations of the final solve of φ and ψ together (0: none)");
+  Integer("levelset.crossing_rounds", &c->levelset.crossing_rounds, 0, 100,
+          "local re-solves after it that raise transversality on the faces still crossing below levelset.min_angle (0: none)");
+  Bool("levelset.seams", &c->levelset.seams,
+       "cut seams from the guidance's ±½ singularities and from holes to the boundary; φ, ψ jump by whole levels "
+       "across them (branch points, as in the paper's curvature reference); false: single-valued φ, ψ");
+  Number("levelset.working_edge", &c->levelset.working_edge, NonNegative(kMaxLength),
+         "edge length of the mesh φ, ψ are solved on, m (0: 0.4 h); a reference finer than 0.7 × this is remeshed");
+
+  Number("extract.corner_angle", &c->extract.corner_angle, Range{0.0, 180.0, true, true}, "boundary turning angle above which a vertex is a corner, degrees");
+  Number("extract.min_edge", &c->extract.min_edge, Range{0.0, 1.0, false, true}, "edges shorter than min_edge × h are merged");
+  Number("extract.boundary_tolerance", &c->extract.boundary_tolerance, Range{0.0, 1.0, false, true}, "mesh boundary edges further than this × h from a curved reference boundary get an extra boundary vertex (0: never)");
+
+  auto& pw = c->planarize.weights;
+  Number("planarize.weights.planarity", &pw.planarity, NonNegative(kMaxWeight), "faces planar");
+  Number("planarize.weights.closeness", &pw.closeness, NonNegative(kMaxWeight), "vertices stay on the reference surface");
+  Number("planarize.weights.boundary", &pw.boundary, NonNegative(kMaxWeight), "boundary vertices stay on the reference boundary");
+  Number("planarize.weights.fairness", &pw.fairness, NonNegative(kMaxWeight), "second differences along the mesh polylines");
+  Number("planarize.weights.anchor", &pw.anchor, NonNegative(kMaxWeight), "vertices stay near where the layout put them");
+  Number("planarize.weights.edge_length", &pw.edge_length, NonNegative(kMaxWeight),
+         "× the planarity weight: no edge shrinks below a quarter of its extracted length (or of h); 0: off");
+  Number("planarize.target_delta", &c->planarize.target_delta, Positive(1.0), "stop when max planarity δ ≤ target_delta");
+  Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (planarity weight raised after each)");
+
+  auto& st = c->stiffen;
+  Number("stiffen.tolerance", &st.tolerance, NonNegative(kMaxLength),
+         "how far a vertex may be from the reference surface after stiffening, m, both sides (0: stage off)");
+  Number("stiffen.slide", &st.slide, NonNegative(kMaxLength), "how far a vertex may also slide along the reference, m, per tangent direction (at most ¼ of stiffen.tolerance)");
+  Number("stiffen.min_member", &st.min_member, Range{0.0, 1.0, true, true}, "no member shorter than this × its planarised length (nor than 1.1 × the section depth)");
+  Integer("stiffen.max_iterations", &st.max_iterations, 0, 100000, "L-BFGS iterations in all, one or two frame solves each");
+  Number("stiffen.weights.fairness", &st.weights.fairness, NonNegative(kMaxWeight), "mesh polylines keep their planarised second differences (panel kinks)");
+  Number("stiffen.weights.edge_length", &st.weights.edge_length, NonNegative(kMaxWeight), "members stay longer than their minimum");
+
+  auto& a = c->analysis;
+  Number("analysis.panel_load", &a.panel_load, NonNegative(kMaxPressure), "panel dead load, N/m² of face area");
+  Number("analysis.gravity", &a.gravity, NonNegative(1e3), "g, m/s²");
+  Bool("analysis.export_calculix", &a.export_calculix, "also write analysis/model.inp for CalculiX (and analysis/model_buckle.inp, a *BUCKLE deck, when the frame buckles)");
+  Choice("analysis.calculix_element", &a.calculix_element, {"u1", "b32r"},
+         "CalculiX beam: u1 = ccx's 2-node beam with the model's Euler–Bernoulli stiffness; b32r = 3-node beam ccx expands to bricks of the true section");
+  Integer("analysis.buckling_modes", &a.buckling_modes, 0, 20, "linear buckling load factors (and mode shapes) to find; 0: none");
+  Integer("analysis.calculix_subdivisions", &a.calculix_subdivisions, 1, 64, "CalculiX elements per member (b32r converges as this grows)");
+  Number("analysis.material.youngs_modulus", &a.material.youngs_modulus, AtLeast(1e6, kMaxModulus), "E, Pa");
+  Number("analysis.material.poisson_ratio", &a.material.poisson_ratio, Range{-1.0, 0.5, true, true}, "ν; G = E / (2(1+ν))");
+  Number("analysis.material.density", &a.material.density, NonNegative(1e6), "ρ, kg/m³");
+  Number("analysis.material.yield_strength", &a.material.yield_strength, AtLeast(1e6, kMaxModulus), "f_y, Pa, for the member utilisation η (S355: 355e6)");
+  Choice("analysis.section.shape", &a.section.shape, {"circular_hollow", "rectangular_hollow"}, "member cross-section");
+  Number("analysis.section.diameter", &a.section.diameter, AtLeast(kMinSection, 100.0), "circular hollow: outside diameter D, m");
+  Number("analysis.section.thickness", &a.section.thickness, AtLeast(kMinSection, 100.0), "wall thickness t, m");
+  Number("analysis.section.width", &a.section.width, AtLeast(kMinSection, 100.0), "rectangular hollow: width (in the surface), m");
+  Number("analysis.section.height", &a.section.height, AtLeast(kMinSection, 100.0), "rectangular hollow: height (along the surface normal), m");
+}
+
+int EditDistance(const std::string& a, const std::string& b) {
+  std::vector<int> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = static_cast<int>(j);
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = static_cast<int>(i);
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string KeyTable::Suggest(const std::string& key) const {
+  std::string best;
+  int best_distance = std::max(2, static_cast<int>(key.size()) / 5) + 1;
+  // Candidates: every key and every section (dotted prefix of a key).
+  for (const auto& e : entries_) {
+    for (size_t end = e.key.find('.'); ; end = e.key.find('.', end + 1)) {
+      const std::string candidate = e.key.substr(0, end);
+      const int d = EditDistance(key, candidate);
+      if (d < best_distance) {
+        best_distance = d;
+        best = candidate;
+      }
+      if (end == std::string::npos) break;
+    }
+  }
+  return best.empty() ? "" : " (did you mean '" + best + "'?)";
+}
+
+// Walks a YAML mapping, setting every leaf it finds; records the keys it set.
+Status ApplyMapping(const YAML::Node& node, const std::string& prefix, const std::string& source,
+                    KeyTable* table, std::set<std::string>* set_keys) {
+  std::set<std::string> seen;
+  for (const auto& kv : node) {
+    const std::string where = source + ":" + std::to_string(kv.first.Mark().line + 1);
+    std::string name;
+    if (!KeyName(kv.first, &name))
+      return Status::InvalidInput(where + ": keys must be plain names, got " + Describe(kv.first) +
+                                  (prefix.empty() ? "" : " in section " + prefix));
+    const std::string key = prefix.empty() ? name : prefix + "." + name;
+    if (!seen.insert(name).second) return Status::InvalidInput(where + ": " + key + ": duplicate key");
+    if (const KeyEntry* entry = table->Find(key)) {
+      const std::string error = entry->set(kv.second);
+      if (!error.empty()) return Status::InvalidInput(where + ": " + KeyError(key, error));
+      set_keys->insert(key);
+    } else if (table->IsSection(key)) {
+      if (kv.second.IsNull()) continue;  // an empty section
+      if (!kv.second.IsMap())
+        return Status::InvalidInput(where + ": " + key + ": is a section, expected a mapping of its keys, got " +
+                                    Describe(kv.second));
+      PQ_RETURN_IF_ERROR(ApplyMapping(kv.second, key, source, table, set_keys));
+    } else {
+      return Status::InvalidInput(where + ": unknown key '" + key + "'" + table->Suggest(key));
+    }
+  }
+  return Status::Ok();
+}
+
+Status ApplyOverride(const std::string& assignment, KeyTable* table, std::string* key_out) {
+  const std::string where = "--set " + assignment;
+  const size_t eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    return Status::InvalidInput(where + ": expected KEY=VALUE");
+  const std::string key = assignment.substr(0, eq);
+  const KeyEntry* entry = table->Find(key);
+  if (!entry) {
+    const std::string what = table->IsSection(key) ? "is a section, not a key" : "unknown key";
+    return Status::InvalidInput(where + ": " + key + ": " + what + table->Suggest(key));
+  }
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    return Status::InvalidInput(where + ": " + key + ": value is not valid YAML: " + e.msg);
+  }
+  const std::string error = entry->set(value);
+  if (!error.empty()) return Status::InvalidInput(where + ": " + KeyError(key, error));
+  *key_out = key;
+  return Status::Ok();
+}
+
+// Keys that are valid one by one but not together.
+Status CheckKeysTogether(const Config& c, const std::string& source) {
+  auto refuse = [&](const std::string& message) { return Status::InvalidInput(source + ": " + message); };
+  if (c.guidance.source == "file" && c.guidance.file.empty())
+    return refuse("guidance.file: required when guidance.source is file");
+  const SectionOptions& section = c.analysis.section;
+  const bool circular = section.shape == "circular_hollow";
+  const double smallest = circular ? section.diameter : std::min(section.width, section.height);
+  if (!(2.0 * section.thickness < smallest))
+    return refuse("analysis.section.thickness: " + FormatNumber(section.thickness) + " m leaves no hollow in a " +
+                  (circular ? "tube of analysis.section.diameter " : "box whose smaller side is ") +
+                  FormatNumber(smallest) + " m (it must be less than half of that)");
+  const AnalysisOptions& a = c.analysis;
+  if (a.panel_load == 0.0 && a.material.density * a.gravity == 0.0)
+    return refuse("analysis.panel_load: the frame carries no load (analysis.panel_load and the steel's weight, "
+                  "analysis.material.density × analysis.gravity, are both 0), so its compliance would be 0");
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ParseConfig(const std::string& yaml_text, const std::string& source_name,
+                   const std::string& base_dir, const std::vector<std::string>& overrides,
+                   Config* config) {
+  *config = Config();
+  KeyTable table(config);
+  table.set_base_dir(base_dir);
+  table.set_source(source_name, true);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    return Status::InvalidInput(source_name + line + ": YAML syntax error: " + e.msg);
+  }
+  std::set<std::string> file_keys;
+  if (!root.IsNull()) {
+    if (!root.IsMap()) return Status::InvalidInput(source_name + ": expected a mapping of config keys at the top level");
+    PQ_RETURN_IF_ERROR(ApplyMapping(root, "", source_name, &table, &file_keys));
+  }
+  auto& surface = config->surface;
+  if (file_keys.count("surface.file") && file_keys.count("surface.generator") && !surface.file.empty() &&
+      !surface.generator.empty())
+    return Status::InvalidInput(source_name + ": surface: set either surface.file or surface.generator, not both");
+  if (!surface.file.empty()) surface.generator.clear();
+
+  table.set_base_dir("");  // paths given on the command line are relative to the working directory
+  table.set_source("--set boundary.rules", false);
+  for (const auto& assignment : overrides) {
+    std::string key;
+    PQ_RETURN_IF_ERROR(ApplyOverride(assignment, &table, &key));
+    // The surface comes from one source: setting one of the two clears the other.
+    if (key == "surface.file" && !surface.file.empty()) surface.generator.clear();
+    if (key == "surface.generator" && !surface.generator.empty()) surface.file.clear();
+  }
+  if (surface.file.empty() && surface.generator.empty())
+    return Status::InvalidInput(source_name + ": surface: set surface.file or surface.generator");
+  return CheckKeysTogether(*config, source_name);
+}
+
+Status LoadConfig(const std::string& path, const std::vector<std::string>& overrides, Config* config) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return Status::InvalidInput(path + ": config file not found");
+  if (!fs::is_regular_file(path, ec)) return Status::InvalidInput(path + ": not a config file (a folder?)");
+  std::ifstream in(path);
+  if (!in) return Status::InvalidInput(path + ": cannot read config file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return ParseConfig(text.str(), path, fs::path(path).parent_path().string(), overrides, config);
+}
+
+json ConfigToJson(const Config& config) {
+  Config copy = config;
+  KeyTable table(&copy);
+  json out = json::object();
+  for (const auto& e : table.entries()) {
+    std::string pointer = "/" + e.key;
+    std::replace(pointer.begin(), pointer.end(), '.', '/');
+    out[json::json_pointer(pointer)] = e.get();
+  }
+  return out;
+}
+
+json ConfigReference() {
+  Config defaults;
+  KeyTable table(&defaults);
+  json keys = json::array();
+  for (const auto& e : table.entries())
+    keys.push_back({{"key", e.key}, {"type", e.type}, {"default", e.get()}, {"meaning", e.comment}});
+  return keys;
+}
+
+std::string ConfigReferenceMarkdown() {
+  std::ostringstream s;
+  s << "| key | type | default | meaning |\n|---|---|---|---|\n";
+  for (const auto& e : ConfigReference()) {
+    std::string type = e["type"].get<std::string>();
+    std::replace(type.begin(), type.end(), '|', '/');
+    s << "| `" << e["key"].get<std::string>() << "` | " << type << " | `" << e["default"].dump() << "` | "
+      << e["meaning"].get<std::string>() << " |\n";
+  }
+  return s.str();
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,115 @@
+#include "pipeline/layout_checks.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace pqlayout {
+namespace {
+
+// Three significant digits, whole numbers up to a billion without an exponent: "0.015",
+// "6180", "2.75e+10".
+std::string Num(double v) {
+  std::ostringstream s;
+  if (std::abs(v) >= 1e3 && std::abs(v) < 1e9) s << std::llround(v);
+  else s << std::setprecision(3) << v;
+  return s.str();
+}
+
+// v rounded to three significant digits, up or down: a bound the message suggests must
+// itself pass the check.
+std::string Bound(double v, bool up) {
+  if (!(v > 0.0) || !std::isfinite(v)) return Num(v);
+  const double unit = std::pow(10.0, std::floor(std::log10(v)) - 2.0);
+  return Num((up ? std::ceil(v / unit) : std::floor(v / unit)) * unit);
+}
+
+std::string Point(const Eigen::Vector3d& p) {
+  return "(" + Num(p.x()) + ", " + Num(p.y()) + ", " + Num(p.z()) + ")";
+}
+
+// At least this many panels across the surface's short side.
+constexpr double kMinPanelsAcross = 2.0;
+
+Status CheckHoles(const SurfaceModel& surface, double h, const std::string& source) {
+  const auto& loops = surface.boundary_loops();
+  for (size_t l = 1; l < loops.size(); ++l) {
+    const double diameter = LoopDiameterBelow(surface, static_cast<int>(l), h);
+    if (diameter >= h) continue;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const auto v : loops[l].vertices) centre += surface.position(v.idx());
+    centre /= static_cast<double>(loops[l].vertices.size());
+    return Status::InvalidInput(
+        "layout.spacing: " + Num(h) + " m is larger than a hole in the surface (" + source + ": boundary loop " +
+        std::to_string(l) + " at " + Point(centre) + ", " + Num(diameter) + " m across): no panel can frame it and the " +
+        "level lines tangle around it; fill the hole in the mesh or use layout.spacing < " + Bound(diameter, false) + " m");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+SurfaceExtent MeasureExtent(const SurfaceModel& surface) {
+  // Principal axes of the area: second moments of the face centroids, weighted by area.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> centroid(surface.num_faces());
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const auto ids = surface.face_vertices(f);
+    centroid[f] = (surface.position(ids[0]) + surface.position(ids[1]) + surface.position(ids[2])) / 3.0;
+    mean += surface.face_area(f) * centroid[f];
+  }
+  mean /= surface.total_area();
+  Eigen::Matrix3d moments = Eigen::Matrix3d::Zero();
+  for (int f = 0; f < surface.num_faces(); ++f)
+    moments += surface.face_area(f) * (centroid[f] - mean) * (centroid[f] - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axes(moments);  // eigenvalues ascending
+  const Eigen::Vector3d u = axes.eigenvectors().col(2), w = axes.eigenvectors().col(1);
+  double u_lo = INFINITY, u_hi = -INFINITY, w_lo = INFINITY, w_hi = -INFINITY;
+  for (int v = 0; v < surface.num_vertices(); ++v) {
+    const Eigen::Vector3d p = surface.position(v) - mean;
+    u_lo = std::min(u_lo, p.dot(u)), u_hi = std::max(u_hi, p.dot(u));
+    w_lo = std::min(w_lo, p.dot(w)), w_hi = std::max(w_hi, p.dot(w));
+  }
+  SurfaceExtent extent;
+  extent.long_side = std::max(u_hi - u_lo, w_hi - w_lo);
+  extent.short_side = std::min(u_hi - u_lo, w_hi - w_lo);
+  return extent;
+}
+
+double LoopDiameterBelow(const SurfaceModel& surface, int loop, double limit) {
+  const auto& vertices = surface.boundary_loops()[loop].vertices;
+  double diameter = 0.0;
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    const Eigen::Vector3d p = surface.position(vertices[i].idx());
+    for (size_t j = i + 1; j < vertices.size(); ++j) {
+      diameter = std::max(diameter, (surface.position(vertices[j].idx()) - p).norm());
+      if (diameter >= limit) return diameter;
+    }
+  }
+  return diameter;
+}
+
+Status CheckSpacingFitsSurface(const SurfaceModel& surface, const LayoutOptions& layout, const std::string& source) {
+  const double h = layout.spacing;
+  const SurfaceExtent extent = MeasureExtent(surface);
+  if (h > extent.short_side / kMinPanelsAcross)
+    return Status::InvalidInput("layout.spacing: " + Num(h) + " m leaves fewer than 2 panels across the surface (" +
+                                source + " is " + Num(extent.long_side) + " m × " + Num(extent.short_side) +
+                                " m in its best-fit plane); use layout.spacing <= " +
+                                Bound(extent.short_side / kMinPanelsAcross, false) + " m");
+  // area / h² can be inf for an absurdly small h: the comparison still refuses it.
+  const double panels = surface.total_area() / (h * h);
+  if (!(panels <= layout.max_panels)) {
+    const double h_min = std::sqrt(surface.total_area() / layout.max_panels);
+    return Status::InvalidInput("layout.spacing: " + Num(h) + " m would give about " + Num(panels) + " panels on the " +
+                                Num(surface.total_area()) + " m² of " + source + " (area / h²), more than " +
+                                "layout.max_panels = " + std::to_string(layout.max_panels) + "; use layout.spacing >= " +
+                                Bound(h_min, true) + " m or raise layout.max_panels");
+  }
+  return CheckHoles(surface, h, source);
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,33 @@
+// layout.spacing checked against the reference surface before anything is solved, so that a
+// spacing that cannot give a meaningful layout is one line at once, not a flat single panel
+// with compliance 0 J (too coarse), two minutes and then out of memory (too fine), or level
+// lines tangled around a hole no panel can frame (a hole smaller than a panel).
+#pragma once
+
+#include <string>
+
+#include "base/status.h"
+#include "geometry/surface_model.h"
+#include "problems/options.h"
+
+namespace pqlayout {
+
+// The surface's extent in its best-fit plane (the plane of the two largest principal axes
+// of its area): what a layout has to cover, in metres, long ≥ short.
+struct SurfaceExtent {
+  double long_side = 0.0, short_side = 0.0;
+};
+SurfaceExtent MeasureExtent(const SurfaceModel& surface);
+
+// The largest distance between two vertices of boundary loop `loop`, if it is below `limit`;
+// otherwise some distance ≥ limit (the search stops there).
+double LoopDiameterBelow(const SurfaceModel& surface, int loop, double limit);
+
+// InvalidInput naming layout.spacing (and the hole) when
+// - h is more than half the extent's short side: fewer than 2 panels across the surface;
+// - area / h² exceeds layout.max_panels;
+// - a hole (boundary loop ≥ 1) is less than h across: no panel can frame it.
+// `source` names the surface in the message ("roof.obj" or "generator dome").
+Status CheckSpacingFitsSurface(const SurfaceModel& surface, const LayoutOptions& layout, const std::string& source);
+
+}  // namespace pqlayout

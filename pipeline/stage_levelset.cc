@@ -1,0 +1,72 @@
+// Stage `levelset`: see problems/levelset.h. The problem itself is in problems/levelset_*.cc
+// (geometry, initial guess, Ceres terms, solves, metrics; shared declarations in
+// levelset_internal.h) and the panel-density scaling in problems/panel_area.h; this file
+// applies the scaling when layout.density asks for it and writes the result.
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "geometry/field_writers.h"
+#include "report/figures.h"
+#include "problems/levelset.h"
+#include "problems/panel_area.h"
+#include "pipeline/stages.h"
+#include "pipeline/surface_fields.h"
+
+namespace pqlayout {
+
+Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
+  SurfaceModel& surface = *state->surface;
+  LevelSetSolution& solution = state->levelsets;
+  const double h = state->config.layout.spacing;
+  PQ_RETURN_IF_ERROR(SolveLevelSets(surface, state->guidance, state->config.levelset, h, &solution));
+  const SeamCut* seams = solution.seams.cut.get();
+  const SurfaceModel& level_surface = seams != nullptr ? seams->cut() : surface;
+  const std::vector<double>& phi_values = seams != nullptr ? solution.phi_cut : solution.phi;
+  const std::vector<double>& psi_values = seams != nullptr ? solution.psi_cut : solution.psi;
+  double density_scale = 1.0;
+  if (state->config.layout.density == "panel_area") {
+    density_scale = PanelAreaScale(level_surface, phi_values, psi_values, h);
+    PQ_RETURN_IF_ERROR(ScaleLevelSets(density_scale, h, &solution));
+    LOG(INFO) << "levelset: φ and ψ scaled by " << density_scale << " for a mean panel area of h²";
+  }
+  auto phi = surface.VertexField<double>("phi");
+  auto psi = surface.VertexField<double>("psi");
+  for (int v = 0; v < surface.num_vertices(); ++v) {
+    phi[VertexHandle(v)] = solution.phi[v];
+    psi[VertexHandle(v)] = solution.psi[v];
+  }
+  *metrics = solution.metrics.ToJson();
+  (*metrics)["initial_guess"] = solution.initial.ToJson();
+  (*metrics)["ceres"] = solution.solver;
+  (*metrics)["working_mesh_triangles"] = solution.working_faces;
+  (*metrics)["density_scale"] = density_scale;
+  (*metrics)["seams"] = solution.seams.ToJson();
+  PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
+  PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
+  const auto& m = solution.metrics;
+  LOG(INFO) << "levelset: alignment " << m.alignment_rms_deg << "° RMS (" << m.alignment_rms_deg_strong
+            << "° where weight > 0.5), spacing CV φ " << m.spacing_cv_phi << " ψ " << m.spacing_cv_psi
+            << ", conjugacy " << m.conjugacy_rms << ", min crossing " << m.min_crossing_angle_deg << "° ("
+            << m.faces_below_min_angle << " faces below " << state->config.levelset.min_angle << "°), "
+            << m.foldovers << " fold-overs";
+  // The layout is still written, but the run must say that its quads are not what was asked for.
+  if (m.foldovers > 0 || m.faces_below_min_angle > 0) {
+    std::ostringstream what;
+    what.precision(3);
+    what << m.faces_below_min_angle << " faces (" << 100.0 * m.area_below_min_angle << " % of the area) cross below "
+         << "levelset.min_angle " << state->config.levelset.min_angle << "° (the smallest at "
+         << m.min_crossing_angle_deg << "°): the quads there are sheared";
+    if (m.foldovers > 0) what << "; " << m.foldovers << " faces fold over: the quads there are inverted";
+    LOG(WARNING) << "levelset: " << what.str();
+  }
+  PQ_RETURN_IF_ERROR(WriteLevelSetFigure(surface, phi_values, psi_values, h, state->guidance.direction,
+                                         state->guidance.weight,
+                                         "Level sets: φ (black) aligned with the guidance, ψ (blue) conjugate",
+                                         out->Path("figures/levelsets.svg"), {}, seams));
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,56 @@
+// Stage `stiffen`: the planarised grid shell reshaped within stiffen.tolerance so that the
+// frame's compliance drops (the optimiser: problems/stiffen.h). Writes the final mesh as
+// quads.obj / quads.ply (what `analyze` analyses), figures/offset.svg (normal offset from
+// the planarised mesh) and the 3D view of the final shell.
+#include <glog/logging.h>
+
+#include "report/figures.h"
+#include "problems/grid_frame.h"
+#include "problems/planarize.h"
+#include "pipeline/stages.h"
+#include "problems/stiffen.h"
+
+namespace pqlayout {
+
+Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
+  const StiffenOptions& options = state->config.stiffen;
+  const double target = state->config.planarize.target_delta;
+  state->shell = state->planarized;
+  StiffenReport report;
+  if (options.tolerance > 0.0)
+    LOG(INFO) << "stiffen: vertices may move " << options.tolerance << " m off the reference (and slide "
+              << options.slide << " m along it), " << options.max_iterations << " iterations at most";
+  PQ_RETURN_IF_ERROR(StiffenMesh(*state->surface, VertexRestraints(state->planarized, *state->surface, state->supports),
+                                 state->config.analysis, options, target, state->config.layout.spacing, &state->shell,
+                                 &report));
+  *metrics = report.ToJson();
+  state->normal_offset = report.normal_offset;  // for report.html's 3D view
+  (*metrics)["tolerance"] = options.tolerance;
+  if (options.tolerance == 0.0) {
+    LOG(INFO) << "stiffen: off (stiffen.tolerance = 0); compliance " << report.compliance_before << " J";
+    // quads.obj, quads.ply from planarize stand; the offset figure says the stage was off.
+    return WriteOffsetFigure(*state->surface, state->shell.mesh, report.normal_offset, 0.0,
+                             "Normal offset: none (stiffen.tolerance = 0)", out->Path("figures/offset.svg"));
+  }
+  LOG(INFO) << "stiffen: compliance " << report.compliance_before << " → " << report.compliance_after << " J (×"
+            << report.compliance_ratio << ") in " << report.iterations << " iterations, " << report.evaluations
+            << " frame solves; normal offset ≤ " << report.offset_max * 1000.0 << " mm, δ max " << report.planarity_max
+            << ", ≤ " << report.closeness_max * 1000.0 << " mm from the reference, kinks mean "
+            << report.kink_mean_deg_before << "° → " << report.kink_mean_deg_after << "°, max "
+            << report.kink_max_deg_before << "° → " << report.kink_max_deg_after << "°, steel "
+            << report.steel_mass_change * 100.0 << " %";
+  if (report.planarity_max > target)
+    LOG(WARNING) << "stiffen: δ max " << report.planarity_max << " is above planarize.target_delta " << target;
+  if (report.closeness_max > options.tolerance)
+    LOG(WARNING) << "stiffen: a vertex is " << report.closeness_max << " m from the reference, more than stiffen.tolerance "
+                 << options.tolerance << " m: planarize left it there and it could not move (held: boundary or no room)";
+  const PolyMesh& mesh = state->shell.mesh;
+  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads"));
+  PQ_RETURN_IF_ERROR(WriteOffsetFigure(*state->surface, mesh, report.normal_offset, options.tolerance,
+                                       "Normal offset of the stiffened shell from the planarised one",
+                                       out->Path("figures/offset.svg")));
+  return WriteShell3dFigure(*state->surface, mesh, target, "The stiffened grid shell, seen from the south-west",
+                            out->Path("figures/shell_3d.svg"));
+}
+
+}  // namespace pqlayout

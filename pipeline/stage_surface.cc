@@ -1,0 +1,77 @@
+// Stage `surface` (SPEC §1): the reference geometry and its supports.
+#include <glog/logging.h>
+
+#include "geometry/mesh_io.h"
+#include "geometry/mesh_metrics.h"
+#include "geometry/surface_generators.h"
+#include "pipeline/layout_checks.h"
+#include "pipeline/stages.h"
+
+namespace pqlayout {
+namespace {
+
+Status LoadOrGenerate(const SurfaceOptions& options, TriMesh* mesh, std::string* source) {
+  if (!options.file.empty()) {
+    *source = options.file;
+    return ReadSurfaceMesh(options.file, mesh);
+  }
+  GeneratorParams params;
+  params.name = options.generator;
+  params.edge_length = options.edge_length;
+  params.width = options.width;
+  params.depth = options.depth;
+  params.rise = options.rise;
+  *source = "generator " + options.generator;
+  return GenerateSurface(params, mesh);
+}
+
+nlohmann::json SupportCounts(const VertexConditions& supports) {
+  nlohmann::json counts = nlohmann::json::object();
+  for (const auto& c : supports)
+    if (c) counts[BoundaryConditionName(*c)] = counts.value(BoundaryConditionName(*c), 0) + 1;
+  return counts;
+}
+
+}  // namespace
+
+Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
+  const Config& config = state->config;
+  TriMesh mesh;
+  std::string source;
+  PQ_RETURN_IF_ERROR(LoadOrGenerate(config.surface, &mesh, &source));
+  state->surface = std::make_unique<SurfaceModel>(std::move(mesh));
+  const SurfaceModel& surface = *state->surface;
+  PQ_RETURN_IF_ERROR(ResolveBoundaryConditions(config.boundary, surface, config.extract.corner_angle,
+                                               &state->supports));
+  PQ_RETURN_IF_ERROR(CheckSpacingFitsSurface(surface, config.layout, source));
+
+  const TriangleQuality quality = MeasureTriangleQuality(surface.mesh());
+  nlohmann::json loops = nlohmann::json::array();
+  for (const auto& loop : surface.boundary_loops())
+    loops.push_back({{"vertices", loop.vertices.size()}, {"length", loop.length}, {"outer", loop.is_outer}});
+  const auto corners = surface.BoundaryCorners(config.extract.corner_angle * M_PI / 180.0);
+  *metrics = {
+      {"source", source},
+      {"n_vertices", surface.num_vertices()},
+      {"n_faces", surface.num_faces()},
+      {"n_boundary_vertices", surface.num_boundary_vertices()},
+      {"boundary_loops", loops},
+      {"n_corners", corners.size()},
+      {"area", quality.area},
+      {"projected_area", quality.projected_area},
+      {"bbox_min", {surface.bbox_min().x(), surface.bbox_min().y(), surface.bbox_min().z()}},
+      {"bbox_max", {surface.bbox_max().x(), surface.bbox_max().y(), surface.bbox_max().z()}},
+      {"edge_length_min", quality.edge_min},
+      {"edge_length_mean", quality.edge_mean},
+      {"edge_length_max", quality.edge_max},
+      {"min_angle_deg", quality.min_angle_deg},
+      {"supports", SupportCounts(state->supports)},
+  };
+  LOG(INFO) << "surface: " << source << ": " << surface.num_faces() << " triangles, "
+            << surface.num_vertices() << " vertices, area " << quality.area << " m², "
+            << surface.boundary_loops().size() << " boundary loop(s), min angle "
+            << quality.min_angle_deg << "°";
+  return WriteMesh(surface.mesh(), out->Path("surface.obj"));
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,217 @@
+// The guidance field (strain, curvature or file): see problems/guidance.h.
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "geometry/differential_operators.h"
+#include "geometry/principal_directions.h"
+#include "problems/guidance.h"
+
+namespace pqlayout {
+
+std::vector<double> AlignmentWeights(const std::vector<double>& magnitude, double scale, double threshold,
+                                     double ramp) {
+  std::vector<double> weight(magnitude.size(), 0.0);
+  if (!(scale > 0.0)) return weight;
+  for (size_t f = 0; f < magnitude.size(); ++f) {
+    const double relative = magnitude[f] / scale;
+    if (ramp > 0.0) weight[f] = std::clamp((relative - threshold) / ramp, 0.0, 1.0);
+    else weight[f] = relative >= threshold ? 1.0 : 0.0;
+  }
+  return weight;
+}
+
+namespace {
+
+void Resize(int faces, GuidanceField* field) {
+  field->direction.assign(faces, Eigen::Vector3d::Zero());
+  field->major.assign(faces, 0.0);
+  field->minor.assign(faces, 0.0);
+  field->magnitude.assign(faces, 0.0);
+}
+
+}  // namespace
+
+Status ComputeStrainGuidance(const SurfaceModel& surface, const std::vector<double>& v_z,
+                             const GuidanceOptions& options, GuidanceField* field) {
+  Resize(surface.num_faces(), field);
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const Eigen::Vector3d& n = surface.face_normal(f);
+    const Eigen::Vector3d grad = FaceGradient(surface, f, v_z);
+    const TangentEigen strain = DecomposeOnTangentPlane(GreenLagrangeStrain(n, grad), n);
+    // Orientation (paper): ⟨e_max, P v⟩ > 0 with v the face's mean displacement. On a face
+    // parallel to the ground P v vanishes; there the gradient of v_z decides instead.
+    const auto ids = surface.face_vertices(f);
+    const double mean_vz = (v_z[ids[0]] + v_z[ids[1]] + v_z[ids[2]]) / 3.0;
+    const Eigen::Vector3d Pv = mean_vz * (Eigen::Vector3d::UnitZ() - n * n.z());
+    const bool flat = Pv.norm() <= 1e-9 * std::abs(mean_vz);
+    const double side = flat ? strain.major_direction.dot(grad) : strain.major_direction.dot(Pv);
+    field->direction[f] = side < 0.0 ? -strain.major_direction : strain.major_direction;
+    field->major[f] = strain.major;
+    field->minor[f] = strain.minor;
+    field->magnitude[f] = std::abs(strain.major);
+  }
+  field->scale = *std::max_element(field->magnitude.begin(), field->magnitude.end());
+  field->weight = AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
+  return Status::Ok();
+}
+
+Status ComputeCurvatureGuidance(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field) {
+  Resize(surface.num_faces(), field);
+  const std::vector<Eigen::Matrix3d> shape = FaceShapeOperators(surface);
+  // κ1 ≥ κ2 ordered by sign, oriented by the area-weighted mean curvature: on a synclastic
+  // roof this is the direction of largest |κ| (as before), and where the mean curvature
+  // changes sign (a hypar, a wavy roof) the field stays continuous instead of turning by 90°
+  // along the lines κ1 = −κ2, which made spurious ±½ singularity pairs (70 on the hypar).
+  double mean_curvature = 0.0;
+  for (int f = 0; f < surface.num_faces(); ++f) mean_curvature += surface.face_area(f) * shape[f].trace();
+  const int orientation = mean_curvature < 0.0 ? -1 : 1;
+  std::vector<double> curvature_sum(surface.num_faces());
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const TangentEigen curvature = DecomposeOnTangentPlane(shape[f], surface.face_normal(f), orientation);
+    field->direction[f] = curvature.major_direction;
+    field->major[f] = curvature.major;
+    field->minor[f] = curvature.minor;
+    field->magnitude[f] = std::abs(curvature.major - curvature.minor);
+    curvature_sum[f] = std::abs(curvature.major) + std::abs(curvature.minor);
+  }
+  // Scale: the 95th percentile of |κ1| + |κ2|, so that a few sharply curved faces (the Great
+  // Court's rectangle corners) do not decide the weights of the whole roof.
+  const auto rank = curvature_sum.begin() + static_cast<long>(0.95 * (curvature_sum.size() - 1));
+  std::nth_element(curvature_sum.begin(), rank, curvature_sum.end());
+  field->scale = *rank;
+  field->weight = AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
+  return Status::Ok();
+}
+
+namespace {
+
+// One data line of a guidance file: its words and their values.
+struct GuidanceRow {
+  std::vector<std::string> words;
+  std::vector<double> values;
+  bool numeric = true;
+};
+
+GuidanceRow SplitRow(std::string line) {
+  std::replace(line.begin(), line.end(), ',', ' ');
+  std::istringstream words(line);
+  GuidanceRow row;
+  std::string word;
+  while (words >> word) {
+    char* end = nullptr;
+    row.values.push_back(std::strtod(word.c_str(), &end));
+    row.numeric = row.numeric && *end == '\0';
+    row.words.push_back(word);
+  }
+  return row;
+}
+
+// The face a row is for. The id is range-checked as a double before the cast: NaN or 1e300
+// cast to int is undefined behaviour.
+Status RowFace(const GuidanceRow& row, int num_faces, int* face) {
+  const double id = row.values[0];
+  if (!(id >= 0.0 && id < num_faces && id == std::floor(id)))
+    return Status::InvalidInput("face id '" + row.words[0] + "' is not a face of the surface (ids 0 to " +
+                                std::to_string(num_faces - 1) + ")");
+  *face = static_cast<int>(id);
+  return Status::Ok();
+}
+
+// Larger direction components are refused: the field's magnitudes are drawn and compared
+// (1e308 made the figure's colour bar overflow an int cast).
+constexpr double kMaxComponent = 1e12;
+
+// The row's direction projected onto face f's plane, scaled to its largest component first
+// so that tiny vectors do not underflow; *magnitude is its length (0: no direction here).
+Status RowDirection(const GuidanceRow& row, const Eigen::Vector3d& n, Eigen::Vector3d* unit, double* magnitude) {
+  const Eigen::Vector3d d(row.values[1], row.values[2], row.values[3]);
+  for (int k = 0; k < 3; ++k) {
+    const std::string name = "d" + std::string(1, "xyz"[k]) + " is '" + row.words[1 + k] + "'";
+    if (!std::isfinite(d[k])) return Status::InvalidInput(name + ", not a finite number");
+    if (std::abs(d[k]) > kMaxComponent)
+      return Status::InvalidInput(name + ", more than 1e12 in size (scale the field down)");
+  }
+  const double largest = d.cwiseAbs().maxCoeff();
+  *magnitude = 0.0;
+  if (largest == 0.0) return Status::Ok();
+  const Eigen::Vector3d scaled = d / largest;
+  const Eigen::Vector3d tangent = scaled - n * n.dot(scaled);
+  if (tangent.norm() <= 1e-9) return Status::Ok();  // normal to the face: no direction in it
+  *unit = tangent.normalized();
+  *magnitude = largest * tangent.norm();
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ReadGuidanceFile(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field) {
+  const std::string& path = options.file;
+  if (path.empty()) return Status::InvalidInput("guidance.file: required when guidance.source is file");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return Status::InvalidInput(path + ": guidance file not found");
+  if (!std::filesystem::is_regular_file(path, ec)) return Status::InvalidInput(path + ": not a guidance file (a folder?)");
+  std::ifstream in(path);
+  if (!in) return Status::InvalidInput(path + ": cannot read the guidance file");
+  const int num_faces = surface.num_faces();
+  Resize(num_faces, field);
+  std::vector<double> given_weight(num_faces, 0.0);
+  std::vector<int> line_of_face(num_faces, 0);
+  size_t columns = 0;  // 4 or 5, fixed by the first data line
+  std::string line;
+  for (int line_number = 1; std::getline(in, line); ++line_number) {
+    const GuidanceRow row = SplitRow(line);
+    if (row.values.empty() || (!row.numeric && line_number == 1)) continue;  // blank line or header
+    const std::string where = path + ":" + std::to_string(line_number);
+    if (!row.numeric || (row.values.size() != 4 && row.values.size() != 5))
+      return Status::InvalidInput(where + ": expected id,dx,dy,dz[,weight]");
+    if (columns == 0) columns = row.values.size();
+    if (row.values.size() != columns)
+      return Status::InvalidInput(where + ": " + std::to_string(row.values.size()) + " values, but the first line has " +
+                                  std::to_string(columns) + " (give a weight on every line or on none)");
+    int f = -1;
+    PQ_RETURN_IF_ERROR(RowFace(row, num_faces, &f).WithContext(where));
+    if (line_of_face[f] > 0)
+      return Status::InvalidInput(where + ": face " + std::to_string(f) + " appears twice (first on line " +
+                                  std::to_string(line_of_face[f]) + ")");
+    line_of_face[f] = line_number;
+    PQ_RETURN_IF_ERROR(RowDirection(row, surface.face_normal(f), &field->direction[f], &field->magnitude[f])
+                           .WithContext(where + ": face " + std::to_string(f)));
+    if (columns == 5) {
+      const double w = row.values[4];
+      if (!(w >= 0.0 && w <= 1.0))
+        return Status::InvalidInput(where + ": weight must be in [0, 1], got '" + row.words[4] + "'");
+      if (w > 0.0 && field->magnitude[f] == 0.0)
+        return Status::InvalidInput(where + ": face " + std::to_string(f) + " has weight " + row.words[4] +
+                                    " but no direction (zero, or normal to the face)");
+      given_weight[f] = w;
+    }
+  }
+  const auto missing = std::find(line_of_face.begin(), line_of_face.end(), 0);
+  if (missing != line_of_face.end())
+    return Status::InvalidInput(path + ": no direction for face " + std::to_string(missing - line_of_face.begin()) +
+                                " (the surface has " + std::to_string(num_faces) + " faces)");
+  field->scale = *std::max_element(field->magnitude.begin(), field->magnitude.end());
+  if (!(field->scale > 0.0))
+    return Status::InvalidInput(path + ":" + std::to_string(line_of_face[0]) +
+                                ": every direction is zero or normal to the surface (this line is face 0's): "
+                                "there is no guidance to follow");
+  for (int f = 0; f < num_faces; ++f) {
+    // Faces without a direction get a unit one in their plane (the field's invariant) and no
+    // weight, so that no solver ever normalises a zero vector.
+    if (field->magnitude[f] > 0.0) continue;
+    const auto ids = surface.face_vertices(f);
+    field->direction[f] = (surface.position(ids[1]) - surface.position(ids[0])).normalized();
+  }
+  field->weight = columns == 5 ? given_weight
+                                : AlignmentWeights(field->magnitude, field->scale, options.threshold, options.ramp);
+  for (int f = 0; f < num_faces; ++f)
+    if (field->magnitude[f] == 0.0) field->weight[f] = 0.0;
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

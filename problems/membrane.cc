@@ -1,0 +1,86 @@
+// The membrane problem: see problems/membrane.h.
+#include <glog/logging.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "geometry/differential_operators.h"
+#include "problems/membrane.h"
+#include "solver/cholmod_solver.h"
+
+namespace pqlayout {
+namespace {
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+bool IsDirichlet(const std::optional<BoundaryCondition>& c) {
+  return c && *c != BoundaryCondition::kFree;
+}
+
+Status CheckEveryComponentIsSupported(const SurfaceModel& surface, const VertexConditions& supports) {
+  std::vector<int> component;
+  const int count = ConnectedComponents(surface, &component);
+  std::vector<char> supported(count, 0);
+  for (int v = 0; v < surface.num_vertices(); ++v)
+    if (IsDirichlet(supports[v])) supported[component[v]] = 1;
+  for (int v = 0; v < surface.num_vertices(); ++v) {
+    if (!supported[component[v]]) {
+      const long size = std::count(component.begin(), component.end(), component[v]);
+      return Status::InvalidInput("the part of the surface containing vertex " + std::to_string(v) + " (" +
+                                  std::to_string(size) + " vertices) has no fixed, clamped or sliding boundary "
+                                  "vertex: the membrane problem is singular (check boundary.default / boundary.rules)");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status SolveMembrane(const SurfaceModel& surface, const VertexConditions& supports,
+                     const MembraneOptions& options, double q, MembraneSolution* solution) {
+  if (options.bending != 0.0)
+    return Status::InvalidInput("membrane.bending: the bending term is not implemented yet; use 0 (the paper's model)");
+  PQ_RETURN_IF_ERROR(CheckEveryComponentIsSupported(surface, supports));
+  auto start = std::chrono::steady_clock::now();
+  const int nv = surface.num_vertices();
+  // Unknowns: the vertices that are not Dirichlet, numbered consecutively.
+  std::vector<int> unknown(nv, -1);
+  int n = 0;
+  for (int v = 0; v < nv; ++v)
+    if (!IsDirichlet(supports[v])) unknown[v] = n++;
+  solution->n_unknowns = n;
+  solution->n_dirichlet = nv - n;
+  solution->v_z.assign(nv, 0.0);
+  if (n == 0) return Status::Ok();
+
+  const Eigen::SparseMatrix<double> K = CotanStiffness(surface);
+  std::vector<Eigen::Triplet<double>> reduced;
+  reduced.reserve(K.nonZeros());
+  for (int col = 0; col < K.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, col); it; ++it)
+      if (unknown[it.row()] >= 0 && unknown[it.col()] >= 0)
+        reduced.emplace_back(unknown[it.row()], unknown[it.col()], options.stiffness * it.value());
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(reduced.begin(), reduced.end());
+  Eigen::VectorXd f(n);
+  for (int v = 0; v < nv; ++v)
+    if (unknown[v] >= 0) f[unknown[v]] = -q * surface.vertex_area(v);
+  solution->assemble_seconds = Seconds(start);
+
+  start = std::chrono::steady_clock::now();
+  CholmodSolver solver;
+  PQ_RETURN_IF_ERROR(solver.Factorize(A).WithContext("membrane"));
+  solution->factor_seconds = Seconds(start);
+  start = std::chrono::steady_clock::now();
+  Eigen::VectorXd x;
+  PQ_RETURN_IF_ERROR(solver.Solve(f, &x).WithContext("membrane"));
+  solution->solve_seconds = Seconds(start);
+  solution->relative_residual = (A * x - f).norm() / f.norm();
+  for (int v = 0; v < nv; ++v)
+    if (unknown[v] >= 0) solution->v_z[v] = x[unknown[v]];
+  return Status::Ok();
+}
+
+}  // namespace pqlayout

@@ -1,0 +1,169 @@
+// The problems' options: one struct per stage, every field with its default and a one-line
+// comment. Config keys are the dotted snake_case paths of these fields
+// (`levelset.weights.alignment`); pipeline/config.h gathers the structs into Config, and the
+// key table in pipeline/config.cc binds each key to its field, type, range and comment, and is
+// the single source for parsing, `--set`, the resolved config in report.json and the config
+// reference (`pqlayout keys`). A problem takes its own struct, never the whole Config.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "base/status.h"
+
+namespace pqlayout {
+
+// How a boundary vertex is supported (SPEC §2 and §7).
+enum class BoundaryCondition { kFixed, kFree, kClamped, kSliding };
+const char* BoundaryConditionName(BoundaryCondition c);
+
+// Which boundary vertices a rule applies to.
+struct BoundarySelector {
+  enum class Kind { kAll, kLoop, kOuter, kInner, kBox, kIds, kIdsFile, kCorners };
+  Kind kind = Kind::kAll;
+  int loop = -1;                                        // kLoop: index, 0 = outer loop
+  Eigen::Vector3d box_min = Eigen::Vector3d::Zero();    // kBox: axis-aligned box, metres
+  Eigen::Vector3d box_max = Eigen::Vector3d::Zero();
+  std::vector<int> ids;                                 // kIds: vertex ids
+  std::string ids_file;                                 // kIdsFile: file of vertex ids
+};
+
+struct BoundaryRule {
+  BoundarySelector select;
+  BoundaryCondition condition = BoundaryCondition::kFixed;
+  std::string origin;  // where the rule was written ("file.yaml:12" or "--set boundary.rules"), for messages
+};
+
+struct SurfaceOptions {
+  std::string file;                   // reference mesh (OBJ/PLY/OFF/STL, metres); relative to the config file
+  std::string generator = "great_court";  // built-in surface when no file is given
+  double edge_length = 1.5;           // generator: target triangle edge length, m
+  double width = 30.0;                // generator: x extent, m (disk/annulus: outer diameter)
+  double depth = 30.0;                // generator: y extent, m (annulus: inner diameter)
+  double rise = 5.0;                  // generator: crown height above the supports, m
+};
+
+struct BoundaryOptions {
+  BoundaryCondition default_condition = BoundaryCondition::kFixed;  // key: boundary.default
+  std::vector<BoundaryRule> rules;    // applied in order, later rules win
+};
+
+struct LoadOptions {
+  double q = 1350.0;  // dead load per area for the membrane solve, N/m² (glazed steel grid shell)
+};
+
+struct MembraneOptions {
+  double stiffness = 1.0e6;  // λ_m, membrane stiffness, N/m (scales v; ε's directions only weakly)
+  double bending = 0.0;      // λ_b, bending stiffness, N·m (0 = the paper's pure membrane)
+};
+
+struct GuidanceOptions {
+  std::string source = "strain";  // strain | curvature | file
+  double threshold = 0.2;  // no alignment where |ε_max| < threshold × max |ε_max|
+  double ramp = 0.1;       // weight ramps 0 → 1 over [threshold, threshold + ramp] × max
+  std::string file;        // source = file: per-face CSV (id,dx,dy,dz[,weight])
+};
+
+struct LayoutOptions {
+  double spacing = 3.0;  // h: distance between neighbouring level lines, m
+  // spacing: the level lines are solved to lie h apart; panel_area: afterwards φ and ψ are
+  // scaled by one common factor so that the mean panel (cell) area is h² — layouts whose
+  // families cross at different angles then get the same number of nodes per area; auto:
+  // spacing for `run` and `sweep`, panel_area for `compare` (a structural comparison is only
+  // fair at equal node counts, as in the paper).
+  std::string density = "auto";
+  // Refuse a spacing that would give more panels than this, estimated as area / h² before
+  // anything is solved: the level-set solve's and the extraction's time and memory grow with it.
+  int max_panels = 100000;
+};
+
+// Defaults from a weight sweep on the Great Court (README, "Level sets"): the terms are
+// area integrals of dimensionless quantities, so the weights carry over to other roofs.
+struct LevelsetWeights {
+  double alignment = 10.0;        // φ's level lines follow the guidance
+  double spacing = 5.0;           // h|∇φ| = 1 and h|∇ψ| = 1
+  double smoothness = 0.01;       // h² × gradient jump per unit length across interior edges
+  double conjugacy = 1.0;         // II(n×∇φ, n×∇ψ) = 0
+  double transversality = 100.0;  // crossing angle ≥ levelset.min_angle, no fold-overs
+};
+
+struct LevelsetOptions {
+  LevelsetWeights weights;
+  double min_angle = 30.0;  // minimum crossing angle of the two families, degrees
+  int max_iterations = 50;    // Ceres iterations of the φ solve and of the ψ solve
+  int joint_iterations = 300; // Ceres iterations of the final joint solve (0: none)
+  int crossing_rounds = 10;   // local re-solves raising transversality where the crossing is below min_angle (0: none)
+  bool seams = true;          // cut branch seams at guidance singularities and holes (φ, ψ jump across them)
+  double working_edge = 0.0;  // edge length of the mesh φ, ψ are solved on, m (0: 0.4 h); a finer reference is remeshed
+};
+
+struct ExtractOptions {
+  double corner_angle = 30.0;  // boundary turning angle above which a vertex is a corner, degrees
+  double min_edge = 0.2;       // edges shorter than min_edge × h are merged
+  double boundary_tolerance = 0.01;  // boundary edges further than this × h from the reference boundary are split
+};
+
+struct PlanarizeWeights {
+  double planarity = 1.0;   // faces planar
+  double closeness = 1.0;   // vertices on the reference surface
+  double boundary = 1.0;    // boundary vertices on the reference boundary
+  double fairness = 0.01;   // second differences along the mesh polylines
+  double anchor = 1.0;      // vertices stay near where the layout put them
+  double edge_length = 0.0; // × planarity weight: no edge below ¼ of its extracted length (of h); 0: off
+};
+
+struct PlanarizeOptions {
+  PlanarizeWeights weights;
+  double target_delta = 1e-3;  // stop when max planarity δ ≤ target
+  int max_rounds = 20;         // outer rounds (closest-point refresh, planarity weight raise)
+};
+
+struct StiffenWeights {
+  double fairness = 0.1;     // polylines keep the second differences of the planarised mesh (kinks)
+  double edge_length = 1.0;  // members stay longer than max(1.1 × section depth, min_member × planarised length)
+};
+
+// Stage stiffen (problems/stiffen.h): the planarised shell reshaped within `tolerance` of the
+// reference so that the frame's compliance drops, faces kept planar.
+struct StiffenOptions {
+  // How far (m) a vertex may be from the reference surface, both sides; 0: stage off.
+  // 0.1 m: a change an architect reads as the same roof (a third of a percent of the Great
+  // Court's span), and it takes 26 % (strain grid) to 40 % (curvature grid) off the Great
+  // Court's compliance (README, "Stiffen").
+  double tolerance = 0.1;
+  double slide = 0.01;        // how far (m) a vertex may also move along the reference (each tangent direction)
+  double min_member = 0.75;   // no member shorter than this × its planarised length
+  int max_iterations = 1000;   // L-BFGS iterations in all (each one or two frame solves)
+  StiffenWeights weights;
+};
+
+struct MaterialOptions {
+  double youngs_modulus = 210e9;  // E, Pa (steel)
+  double poisson_ratio = 0.3;     // ν; G = E / (2(1+ν))
+  double density = 7850.0;        // ρ, kg/m³
+  double yield_strength = 355e6;  // f_y, Pa (S355): member utilisation (solver/member_checks.h)
+};
+
+struct SectionOptions {
+  std::string shape = "circular_hollow";  // circular_hollow | rectangular_hollow
+  double diameter = 0.1143;   // circular hollow: outside diameter D, m
+  double thickness = 0.005;   // wall thickness t, m
+  double width = 0.06;        // rectangular hollow: width (in the surface), m
+  double height = 0.12;       // rectangular hollow: height (along the surface normal), m
+};
+
+struct AnalysisOptions {
+  double panel_load = 1000.0;  // panel dead load, N/m² of face area
+  double gravity = 9.81;       // g, m/s²
+  bool export_calculix = false;  // also write analysis/model.inp for CalculiX
+  std::string calculix_element = "u1";  // u1 (same Euler–Bernoulli stiffness) | b32r (expanded to bricks)
+  int calculix_subdivisions = 1;        // CalculiX elements per member
+  int buckling_modes = 3;               // linear buckling factors to find (0: no buckling analysis)
+  MaterialOptions material;
+  SectionOptions section;
+};
+
+}  // namespace pqlayout

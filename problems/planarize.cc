@@ -1,0 +1,291 @@
+// The planarisation problem (paper §3.2): see problems/planarize.h.
+#include <ceres/ceres.h>
+#include <glog/logging.h>
+
+#include <tuple>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/closest_point.h"
+#include "solver/ceres_options.h"
+#include "geometry/planarity.h"
+#include "problems/planarize.h"
+#include "problems/residuals/anchor_residual.h"
+#include "problems/residuals/edge_length_residual.h"
+#include "problems/residuals/boundary_residual.h"
+#include "problems/residuals/closeness_residual.h"
+#include "problems/residuals/fairness_residual.h"
+#include "problems/residuals/planarity_residual.h"
+#include "problems/residuals/surface_chart_manifold.h"
+
+namespace pqlayout {
+
+std::vector<double> FacePlanarity(const PolyMesh& mesh) {
+  std::vector<double> delta(mesh.n_faces(), 0.0);
+  for (const auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> polygon;
+    for (const auto v : mesh.fv_range(f)) polygon.push_back(ToEigen(mesh.point(v)));
+    delta[f.idx()] = PlanarityDelta(polygon);
+  }
+  return delta;
+}
+
+nlohmann::json PlanarizeReport::ToJson() const {
+  return {{"planarity_max", planarity_max},   {"planarity_mean", planarity_mean},
+          {"closeness_max", closeness_max},   {"closeness_mean", closeness_mean},
+          {"boundary_deviation", boundary_deviation}, {"max_displacement", max_displacement},
+          {"max_displacement_edges", max_displacement_edges}, {"rounds", rounds},
+          {"iterations", iterations},         {"ceres", ceres}};
+}
+
+namespace {
+
+// The schedule (see problems/planarize.h): starting weights, the factors they are raised by
+// after each round, the Ceres iterations per round, and when a round may end early.
+constexpr double kPlanarityStart = 1e3, kClosenessStart = 1e4;
+constexpr double kPlanarityRaise = 30.0, kClosenessRaise = 3.0;
+// Edge-length hinge (planarize.weights.edge_length × the current planarity weight): no edge
+// shorter than a quarter of its extracted length (of h for longer ones). Off by default: on
+// the Great Court it stops the 57–59 edges that otherwise shrink below the member depth,
+// but closeness max rises from 7–11 mm to 57 mm (strain) and 0.24 m (curvature) at weight
+// 1e-4 (README, planarisation).
+constexpr double kEdgeFraction = 0.25;
+constexpr int kIterationsPerRound = 10;
+// A round ends at the first iterate with δ max ≤ kEarlyDelta × target and every vertex within
+// kEarlyCloseness × h of the reference (half the ≤ 0.02 h of issue 6): the margin keeps the
+// result clear of the target, and the closeness test keeps a round from stopping right after
+// the big first step of a freshly raised planarity weight, which lifts vertices off the
+// reference before the later iterations pull them back (0.32 m on the lifted 3 m grid).
+constexpr double kEarlyDelta = 0.5, kEarlyCloseness = 0.01;
+
+// Ends a Ceres solve as soon as the current iterate meets the schedule's goal (above).
+class GoalReached final : public ceres::IterationCallback {
+ public:
+  GoalReached(const std::vector<std::vector<int>>& faces, const std::vector<double>& position,
+              const ClosestPointQuery& query, double max_delta, double max_distance)
+      : faces_(faces), position_(position), query_(query), max_delta_(max_delta), max_distance_(max_distance) {}
+
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    std::vector<Eigen::Vector3d> polygon;
+    for (const auto& face : faces_) {
+      polygon.clear();
+      for (const int v : face) polygon.push_back(Point(v));
+      if (PlanarityDelta(polygon) > max_delta_) return ceres::SOLVER_CONTINUE;
+    }
+    for (size_t v = 0; v < position_.size() / 3; ++v)
+      if (query_.OnSurface(Point(v)).distance > max_distance_) return ceres::SOLVER_CONTINUE;
+    return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+  }
+
+ private:
+  Eigen::Vector3d Point(size_t v) const { return {position_[3 * v], position_[3 * v + 1], position_[3 * v + 2]}; }
+  const std::vector<std::vector<int>>& faces_;
+  const std::vector<double>& position_;  // Ceres writes every iterate here (update_state_every_iteration)
+  const ClosestPointQuery& query_;
+  const double max_delta_, max_distance_;
+};
+
+void Measure(const PolyMesh& mesh, const std::vector<QuadMeshVertex>& origin, const ClosestPointQuery& query,
+             PlanarizeReport* report) {
+  const std::vector<double> delta = FacePlanarity(mesh);
+  report->planarity_max = delta.empty() ? 0.0 : *std::max_element(delta.begin(), delta.end());
+  double sum = 0.0;
+  for (const double d : delta) sum += d;
+  report->planarity_mean = delta.empty() ? 0.0 : sum / delta.size();
+  report->closeness_max = report->closeness_mean = report->boundary_deviation = 0.0;
+  for (const auto v : mesh.vertices()) {
+    const Eigen::Vector3d p = ToEigen(mesh.point(v));
+    const double distance = query.OnSurface(p).distance;
+    report->closeness_max = std::max(report->closeness_max, distance);
+    report->closeness_mean += distance / mesh.n_vertices();
+    if (origin[v.idx()].on_boundary)
+      report->boundary_deviation = std::max(report->boundary_deviation, query.OnBoundary(p).distance);
+  }
+}
+
+// The two polylines through each interior valence-4 vertex: (a, v, b) with a, b opposite.
+std::vector<std::array<int, 3>> PolylineTriples(const PolyMesh& mesh) {
+  std::vector<std::array<int, 3>> triples;
+  for (const auto v : mesh.vertices()) {
+    if (mesh.is_boundary(v) || mesh.valence(v) != 4) continue;
+    std::vector<int> ring;
+    for (const auto w : mesh.vv_range(v)) ring.push_back(w.idx());
+    triples.push_back({ring[0], v.idx(), ring[2]});
+    triples.push_back({ring[1], v.idx(), ring[3]});
+  }
+  return triples;
+}
+
+// What the Ceres problems of all rounds share: the extracted positions (start), the current
+// ones (position, x y z per vertex, with non-corner vertices first moved onto the reference or
+// its boundary), every face's vertices and fitted plane, the polyline triples of fairness and
+// the edges of the edge-length hinge (a, b, ℓ_min).
+struct PlanarizeData {
+  std::vector<Eigen::Vector3d> start;
+  std::vector<double> position;
+  std::vector<std::vector<int>> faces;
+  std::vector<std::array<double, 4>> planes;
+  std::vector<double> mean_diagonal;
+  std::vector<std::array<int, 3>> triples;
+  std::vector<std::tuple<int, int, double>> edges;
+};
+
+PlanarizeData PrepareData(const ExtractedMesh& extracted, const ClosestPointQuery& query, double h) {
+  const PolyMesh& mesh = extracted.mesh;
+  const int nv = static_cast<int>(mesh.n_vertices());
+  PlanarizeData d;
+  d.start.resize(nv);
+  d.position.resize(3 * nv);
+  for (int v = 0; v < nv; ++v) {
+    d.start[v] = ToEigen(mesh.point(VertexHandle(v)));
+    const auto& origin = extracted.origin[v];
+    const Eigen::Vector3d p = origin.corner        ? d.start[v]
+                              : origin.on_boundary ? query.OnBoundary(d.start[v]).point
+                                                   : query.OnSurface(d.start[v]).point;
+    for (int k = 0; k < 3; ++k) d.position[3 * v + k] = p[k];
+  }
+  for (const auto f : mesh.faces()) {
+    std::vector<int> ids;
+    std::vector<Eigen::Vector3d> polygon;
+    for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx()), polygon.push_back(d.start[v.idx()]);
+    d.faces.push_back(ids);
+    const FacePlane plane = FitPolygonPlane(polygon);
+    d.planes.push_back({plane.n.x(), plane.n.y(), plane.n.z(), plane.d});
+    d.mean_diagonal.push_back(plane.mean_diagonal);
+  }
+  d.triples = PolylineTriples(mesh);
+  for (const auto e : mesh.edges()) {
+    const auto he = mesh.halfedge_handle(e, 0);
+    const int a = mesh.from_vertex_handle(he).idx(), b = mesh.to_vertex_handle(he).idx();
+    const double length = (d.start[a] - d.start[b]).norm();
+    d.edges.emplace_back(a, b, kEdgeFraction * std::min(length, h));
+  }
+  return d;
+}
+
+// The current weights of the schedule: planarity, closeness and boundary are raised round by
+// round; anchor and fairness stay at their config values.
+struct RoundWeights {
+  double planarity, closeness, boundary;
+};
+
+// One round: at most kIterationsPerRound Ceres iterations from d->position (updated in place).
+// on_surface: vertices move on the reference (SurfaceManifold); otherwise in space with
+// closeness and boundary residuals.
+void SolveRound(const ExtractedMesh& extracted, const ClosestPointQuery& query, const PlanarizeOptions& options,
+                double h, const RoundWeights& rw, bool on_surface, PlanarizeData* d, ceres::Solver::Summary* summary) {
+  const auto& w = options.weights;
+  const double anchor_weight = w.anchor, fairness_weight = w.fairness;
+  std::vector<double>& position = d->position;
+  ceres::Problem problem;
+  for (size_t f = 0; f < d->faces.size(); ++f) {
+    if (d->faces[f].size() < 4) continue;  // a triangle is planar
+    problem.AddParameterBlock(d->planes[f].data(), 4,
+                              new ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>());
+    for (const int v : d->faces[f])
+      problem.AddResidualBlock(PlanarityResidual::Create(rw.planarity, d->mean_diagonal[f]), nullptr,
+                               d->planes[f].data(), &position[3 * v]);
+  }
+  const int nv = static_cast<int>(d->start.size());
+  for (int v = 0; v < nv; ++v) {
+    double* p = &position[3 * v];
+    problem.AddParameterBlock(p, 3);
+    const auto& origin = extracted.origin[v];
+    if (origin.corner) {
+      problem.SetParameterBlockConstant(p);
+      continue;
+    }
+    if (on_surface)
+      problem.SetManifold(p, new SurfaceManifold(&query, origin.on_boundary));
+    else if (origin.on_boundary)
+      problem.AddResidualBlock(new BoundaryResidual(&query, rw.boundary, h), nullptr, p);
+    else
+      problem.AddResidualBlock(new ClosenessResidual(&query, rw.closeness, h), nullptr, p);
+    if (anchor_weight > 0.0) problem.AddResidualBlock(AnchorResidual::Create(d->start[v], anchor_weight, h), nullptr, p);
+  }
+  if (w.edge_length > 0.0)
+    for (const auto& [a, b, min_length] : d->edges)
+      problem.AddResidualBlock(EdgeLengthResidual::Create(min_length, w.edge_length * rw.planarity, h),
+                               nullptr, &position[3 * a], &position[3 * b]);
+  if (fairness_weight > 0.0)
+    for (const auto& t : d->triples)
+      problem.AddResidualBlock(FairnessResidual::Create(fairness_weight, h), nullptr, &position[3 * t[0]],
+                               &position[3 * t[1]], &position[3 * t[2]]);
+  ceres::Solver::Options solver_options = SparseCholeskyOptions(kIterationsPerRound);
+  GoalReached goal(d->faces, position, query, kEarlyDelta * options.target_delta, kEarlyCloseness * h);
+  solver_options.callbacks.push_back(&goal);
+  solver_options.update_state_every_iteration = true;
+  ceres::Solve(solver_options, &problem, summary);
+  VLOG(1) << "planarize: Ceres:\n" << summary->FullReport();
+}
+
+void SetPoints(const std::vector<double>& position, PolyMesh* mesh) {
+  for (int v = 0; v < static_cast<int>(mesh->n_vertices()); ++v)
+    mesh->set_point(VertexHandle(v), {position[3 * v], position[3 * v + 1], position[3 * v + 2]});
+}
+
+// How far the vertices moved from the extracted mesh: in metres and in its mean edge lengths.
+void MeasureDisplacement(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start, PlanarizeReport* report) {
+  for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v)
+    report->max_displacement = std::max(report->max_displacement, (ToEigen(mesh.point(VertexHandle(v))) - start[v]).norm());
+  double edge_sum = 0.0;
+  for (const auto e : mesh.edges()) {
+    const auto he = mesh.halfedge_handle(e, 0);
+    edge_sum += (start[mesh.to_vertex_handle(he).idx()] - start[mesh.from_vertex_handle(he).idx()]).norm();
+  }
+  if (edge_sum > 0.0) report->max_displacement_edges = report->max_displacement / (edge_sum / mesh.n_edges());
+}
+
+}  // namespace
+
+Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double h, ExtractedMesh* extracted,
+                     PlanarizeReport* report) {
+  PolyMesh& mesh = extracted->mesh;
+  const ClosestPointQuery query(reference);
+  PlanarizeData data = PrepareData(*extracted, query, h);
+  const auto& w = options.weights;
+  // Weights (config values scale these): the residuals are all dimensionless (δ, metres / h),
+  // so the same numbers work at every spacing h.
+  RoundWeights rw{kPlanarityStart * w.planarity, kClosenessStart * w.closeness, kClosenessStart * w.boundary};
+
+  SetPoints(data.position, &mesh);
+  Measure(mesh, extracted->origin, query, report);
+  bool on_surface = true;
+  for (report->rounds = 0; report->rounds < options.max_rounds && report->planarity_max > options.target_delta;) {
+    ++report->rounds;
+    ceres::Solver::Summary summary;
+    const double previous = report->planarity_max;
+    SolveRound(*extracted, query, options, h, rw, on_surface, &data, &summary);
+    if (!summary.IsSolutionUsable()) return Status::Internal("planarize: Ceres failed: " + summary.message);
+    SetPoints(data.position, &mesh);
+    Measure(mesh, extracted->origin, query, report);
+    report->iterations += static_cast<int>(summary.iterations.size()) - 1;
+    report->ceres.push_back({{"round", report->rounds}, {"on_surface", on_surface}, {"planarity_weight", rw.planarity},
+                             {"closeness_weight", on_surface ? 0.0 : rw.closeness},
+                             {"iterations", summary.iterations.size() - 1}, {"initial_cost", summary.initial_cost},
+                             {"final_cost", summary.final_cost}, {"planarity_max", report->planarity_max},
+                             {"closeness_max", report->closeness_max}, {"seconds", summary.total_time_in_seconds}});
+    LOG(INFO) << "planarize: round " << report->rounds << (on_surface ? " (on the surface)" : " (closeness penalty)")
+              << ": δ max " << report->planarity_max << ", mean " << report->planarity_mean << ", closeness max "
+              << report->closeness_max << " m (" << summary.iterations.size() - 1 << " iterations, "
+              << summary.total_time_in_seconds << " s)";
+    // Stalled on the creases of the reference (δ max improved by less than half): let the
+    // vertices off it. The weights are raised at the switch too — a first off-surface round
+    // at the stalled round's weight only undid part of it (Great Court, h = 1.65 m: δ max
+    // 0.05 → 0.10), so raising saves that round — except with the edge-length hinge, which
+    // rides on the planarity weight: one more ×30 against closeness' ×3 pushed boundary
+    // vertices 6.3 m off the reference (curvature layout, h = 3 m, hinge weight 1e-3).
+    const bool switching = on_surface && report->planarity_max > 0.5 * previous;
+    if (switching) on_surface = false;
+    if (!switching || w.edge_length == 0.0) {
+      rw.planarity *= kPlanarityRaise;
+      rw.closeness *= kClosenessRaise;
+      rw.boundary *= kClosenessRaise;
+    }
+  }
+  MeasureDisplacement(mesh, data.start, report);
+  return Status::Ok();
+}
+
+}  // namespace pqlayout
