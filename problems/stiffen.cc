@@ -284,7 +284,7 @@ Status Minimise(const Objective& F, double allowed, const StiffenOptions& option
     report->iterations += iterations, budget -= iterations;
     LOG(INFO) << "stiffen: L-BFGS run " << run << ": " << iterations << " iterations, objective " << summary.initial_cost
               << " → " << summary.final_cost << " (" << summary.message << ")";
-    if (progress.converged() || summary.termination_type == ceres::FAILURE && iterations <= 1) break;
+    if (progress.converged() || (summary.termination_type == ceres::FAILURE && iterations <= 1)) break;
     if (summary.initial_cost - summary.final_cost < kRestartGain * summary.initial_cost) break;
   }
   *q = F.box().Local(z.data());
