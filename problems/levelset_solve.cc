@@ -103,6 +103,9 @@ std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeo
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
 // seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the
 // offsets are set here.
+// Long (~170 lines) because the four solves (φ, ψ, joint, crossing rounds) share the charts and
+// the term builders, lambdas closing over them; splitting it wants a LevelSetProblem class that
+// owns them (issue 20, next step), and the order residual blocks are added in must not change.
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
                    LevelSetSeams* seams, LevelSetSolution* solution) {
   const LevelSetGeometry geo = Precompute(s);
