@@ -97,4 +97,11 @@ inline int ClosestInterior(const SurfaceModel& s, double x, double y) {
   return best;
 }
 
+// The plan (x, y) of face f's centroid.
+inline Eigen::Vector2d Centroid(const SurfaceModel& s, int f) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const int v : s.face_vertices(f)) c += s.position(v) / 3.0;
+  return c.head<2>();
+}
+
 }  // namespace pqlayout::testing
