@@ -79,8 +79,10 @@ void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, do
 // levelset_metrics.cc
 LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g, const std::vector<double>& phi, const std::vector<double>& psi, double min_angle_deg);
 
-// levelset_solve.cc
+// levelset_problem.cc
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams, LevelSetSolution* solution);
+
+// levelset_solve.cc
 GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceField& g, const SurfaceModel& working);
 Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSolution* solution);
 

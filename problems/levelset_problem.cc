@@ -1,0 +1,365 @@
+// The level-set problem on one mesh (paper §3.1): the terms of φ and ψ on their charts (seam
+// transitions included), and the solves: φ alone, ψ with φ held, both together, then the
+// crossing rounds. LevelSetProblem owns what the four solves share; the order in which the
+// residual blocks are added is the order of the paper's terms and must not change (Ceres'
+// ordering, and with it the last bits of every solve, follow it).
+#include "problems/levelset_internal.h"
+
+#include <glog/logging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "problems/residuals/alignment_residual.h"
+#include "problems/residuals/conjugacy_residual.h"
+#include "problems/residuals/smoothness_residual.h"
+#include "problems/residuals/transversality_residual.h"
+
+namespace pqlayout {
+namespace levelset_internal {
+
+// ---- Crossing-angle rounds ------------------------------------------------------------
+//
+// The transversality hinge is a penalty: at the joint optimum it balances against
+// alignment and spacing, and leaves a few percent of the faces crossing below min_angle
+// (on the Great Court near the guidance singularities and the rectangle's corners; with a
+// global weight ×10 the solve stalls and folds instead). So after the joint solve the
+// faces still crossing below min_angle + kCrossingSlack get their transversality weight
+// multiplied by kCrossingBoost, the hinge is raised by kCrossingMargin, and φ, ψ are
+// re-solved near those faces only: ψ within kPsiRings vertex rings, φ within kPhiRings
+// (φ moves as little as possible, to keep its alignment); the rest is held. Repeated until
+// no face crosses below min_angle or levelset.crossing_rounds is used up.
+constexpr double kCrossingSlack = 1.0;   // degrees above min_angle that still count as failing
+constexpr double kCrossingMargin = 1.5;  // degrees the hinge is raised by in the rounds
+constexpr double kCrossingBoost = 4.0;   // weight factor per round on a failing face
+constexpr int kPhiRings = 1, kPsiRings = 3;
+constexpr int kCrossingIterations = 30;  // Ceres iterations per round
+
+// Marks the failing faces (see above), multiplies their boost and returns how many faces
+// cross below min_angle (0: nothing to do). live_phi / live_psi: the vertices free to move.
+namespace {
+
+int RaiseCrossings(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<double>& phi,
+                   const std::vector<double>& psi, double min_angle, std::vector<double>* boost,
+                   std::vector<char>* live_phi, std::vector<char>* live_psi) {
+  int below = 0;
+  const double sin_failing = std::sin(min_angle + kCrossingSlack / kDegrees);
+  std::vector<char> live(s.num_vertices(), 0);
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const Eigen::Vector3d a = Gradient(geo, s, f, phi), b = Gradient(geo, s, f, psi);
+    const double sine = s.face_normal(f).dot(a.cross(b)) / (a.norm() * b.norm());
+    if (!(sine >= std::sin(min_angle))) ++below;
+    if (sine >= sin_failing) continue;
+    (*boost)[f] *= kCrossingBoost;
+    for (const int v : s.face_vertices(f)) live[v] = 1;
+  }
+  for (int ring = 1; ring <= std::max(kPhiRings, kPsiRings); ++ring) {
+    std::vector<char> next = live;
+    for (int v = 0; v < s.num_vertices(); ++v)
+      if (live[v])
+        for (const auto u : s.mesh().vv_range(VertexHandle(v))) next[u.idx()] = 1;
+    live.swap(next);
+    if (ring == kPhiRings) *live_phi = live;
+    if (ring == kPsiRings) *live_psi = live;
+  }
+  return below;
+}
+
+// A seam edge as the seam smoothness term sees it (cut vertex ids): i, j, k in the minus face
+// f, i, j, l in the plus face g (i, j the same original vertices).
+struct SeamEdgeTerm {
+  int path;
+  int i_minus, j_minus, k, i_plus, j_plus, l;
+  Eigen::Matrix3d Gf, Gg;
+  double area, distance;
+};
+
+std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeometry& geo, const SeamCut& cut) {
+  std::vector<SeamEdgeTerm> terms;
+  for (const auto& e : cut.seam_edges()) {
+    const auto ids_f = s.face_vertices(e.minus_face), ids_g = s.face_vertices(e.plus_face);
+    const TriMesh& m = s.mesh();
+    const auto h = m.halfedge_handle(EdgeHandle(e.cut_edge_minus), 0);
+    const int a = cut.original_vertex(m.from_vertex_handle(h).idx()), b = cut.original_vertex(m.to_vertex_handle(h).idx());
+    SeamEdgeTerm t;
+    t.path = e.path;
+    t.i_minus = t.j_minus = t.k = t.i_plus = t.j_plus = t.l = -1;
+    for (int c = 0; c < 3; ++c) {
+      const int of = cut.original_vertex(ids_f[c]), og = cut.original_vertex(ids_g[c]);
+      (of == a ? t.i_minus : of == b ? t.j_minus : t.k) = ids_f[c];
+      (og == a ? t.i_plus : og == b ? t.j_plus : t.l) = ids_g[c];
+    }
+    t.Gf = OrderedBasis(geo, s, e.minus_face, {t.i_minus, t.j_minus, t.k});
+    t.Gg = OrderedBasis(geo, s, e.plus_face, {t.i_plus, t.j_plus, t.l});
+    t.area = (s.face_area(e.minus_face) + s.face_area(e.plus_face)) / 3.0;
+    t.distance = (geo.centroid[e.minus_face] - geo.centroid[e.plus_face]).norm();
+    terms.push_back(t);
+  }
+  return terms;
+}
+
+// What the solves on one mesh share: the charts of φ and ψ (seam transitions), the per-face
+// transversality boost and hinge of the crossing rounds, and the term builders.
+class LevelSetProblem {
+ public:
+  LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<InteriorEdge>& edges,
+                  const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams,
+                  std::vector<SeamEdgeTerm> seam_terms, LevelSetSolution* solution);
+
+  // Copies of seam vertices back onto their transitions (no-op without seams).
+  void Project();
+  LevelSetMetrics Measure() const;
+  Status SolvePhi();
+  Status SolvePsi();
+  Status SolveJoint();
+  Status CrossingRounds();
+
+ private:
+  void AddPhiTerms(ceres::Problem* problem, const std::vector<char>* live = nullptr) const;
+  void AddPsiTerms(ceres::Problem* problem, const std::vector<char>* live = nullptr) const;
+  void AddSeamSmoothness(ceres::Problem* problem, const Chart& u, const std::vector<double>& offsets,
+                         const std::vector<char>* live) const;
+  void HoldTips(ceres::Problem* problem) const;
+
+  const SurfaceModel& s_;
+  const LevelSetGeometry& geo_;
+  const std::vector<InteriorEdge>& edges_;
+  const GuidanceField& g_;
+  const LevelsetOptions& options_;
+  const LevelsetWeights& w_;
+  const double h_, min_angle_;
+  LevelSetSeams* seams_;  // null without seams
+  const std::vector<SeamEdgeTerm> seam_terms_;
+  LevelSetSolution* solution_;
+  std::vector<double>& phi_;
+  std::vector<double>& psi_;
+  Chart phi_chart_, psi_chart_;
+  std::vector<int> fixed_tips_;  // branch points of sign −1 seams: u = a/2 on both sides
+  std::vector<double> boost_;    // per-face transversality weight factor (RaiseCrossings)
+  double hinge_angle_;
+};
+
+LevelSetProblem::LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& geo,
+                                 const std::vector<InteriorEdge>& edges, const GuidanceField& g,
+                                 const LevelsetOptions& options, double h, LevelSetSeams* seams,
+                                 std::vector<SeamEdgeTerm> seam_terms, LevelSetSolution* solution)
+    : s_(s), geo_(geo), edges_(edges), g_(g), options_(options), w_(options.weights), h_(h),
+      min_angle_(options.min_angle / kDegrees), seams_(seams), seam_terms_(std::move(seam_terms)),
+      solution_(solution), phi_(solution->phi), psi_(solution->psi), phi_chart_{&phi_, {}}, psi_chart_{&psi_, {}},
+      boost_(s.num_faces(), 1.0), hinge_angle_(min_angle_) {
+  if (seams_ == nullptr) return;
+  phi_chart_.map = psi_chart_.map = std::vector<Scalar>(s.num_vertices());
+  for (int v = 0; v < s.num_vertices(); ++v) phi_chart_.map[v] = psi_chart_.map[v] = {v};
+  for (const auto& pair : seams_->cut->copy_pairs()) {
+    const double sign = seams_->sign[pair.path];
+    if (pair.minus == pair.plus) {
+      if (sign < 0) fixed_tips_.push_back(pair.minus);
+      continue;
+    }
+    phi_chart_.map[pair.plus] = {pair.minus, sign, seams_->phi_offset[pair.path]};
+    psi_chart_.map[pair.plus] = {pair.minus, sign, seams_->psi_offset[pair.path]};
+  }
+}
+
+void LevelSetProblem::Project() {
+  if (seams_ == nullptr) return;
+  ProjectTransitions(*seams_, seams_->phi_offset, &phi_);
+  ProjectTransitions(*seams_, seams_->psi_offset, &psi_);
+}
+
+LevelSetMetrics LevelSetProblem::Measure() const {
+  return levelset_internal::Measure(s_, geo_, g_, phi_, psi_, options_.min_angle);
+}
+
+void LevelSetProblem::HoldTips(ceres::Problem* problem) const {
+  for (const int v : fixed_tips_)
+    for (double* x : {&phi_[v], &psi_[v]})
+      if (problem->HasParameterBlock(x)) problem->SetParameterBlockConstant(x);
+}
+
+// Smoothness across the seams: f on the minus side, g on the plus side; with the plus face's
+// third vertex l read as s·(u_l − a) (its plus-chart value mapped back), the ordinary
+// smoothness term measures ∇u_f − s·∇u_g, the jump in one chart.
+void LevelSetProblem::AddSeamSmoothness(ceres::Problem* problem, const Chart& u, const std::vector<double>& offsets,
+                                        const std::vector<char>* live) const {
+  if (w_.smoothness <= 0.0) return;
+  for (const auto& t : seam_terms_) {
+    if (!Live(live, {t.i_minus, t.j_minus, t.k, t.l})) continue;
+    const double sign = seams_->sign[t.path];
+    Scalar l = u.At(t.l);
+    l = {l.vertex, sign * l.scale, sign * (l.offset - offsets[t.path])};
+    AddMapped(problem, SmoothnessResidual::Create(t.Gf, t.Gg, t.area, t.distance, h_), Weight(w_.smoothness),
+              {{&u, u.At(t.i_minus)}, {&u, u.At(t.j_minus)}, {&u, u.At(t.k)}, {&u, l}});
+  }
+}
+
+// φ's terms: alignment + spacing + smoothness.
+void LevelSetProblem::AddPhiTerms(ceres::Problem* problem, const std::vector<char>* live) const {
+  for (int f = 0; f < s_.num_faces(); ++f) {
+    const auto ids = s_.face_vertices(f);
+    if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
+    if (w_.alignment > 0.0 && g_.weight[f] > 0.0)
+      AddMapped(problem, AlignmentResidual::Create(geo_.G[f], g_.direction[f], g_.weight[f], s_.face_area(f), h_),
+                Weight(w_.alignment),
+                {{&phi_chart_, phi_chart_.At(ids[0])}, {&phi_chart_, phi_chart_.At(ids[1])},
+                 {&phi_chart_, phi_chart_.At(ids[2])}});
+  }
+  AddSpacing(s_, geo_, h_, w_.spacing, phi_chart_, problem, live);
+  AddSmoothness(edges_, h_, w_.smoothness, phi_chart_, problem, live);
+  if (seams_ != nullptr) AddSeamSmoothness(problem, phi_chart_, seams_->phi_offset, live);
+}
+
+// ψ's terms: conjugacy + transversality (both also involve φ) + spacing + smoothness.
+void LevelSetProblem::AddPsiTerms(ceres::Problem* problem, const std::vector<char>* live) const {
+  for (int f = 0; f < s_.num_faces(); ++f) {
+    const auto ids = s_.face_vertices(f);
+    if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
+    const std::initializer_list<std::pair<const Chart*, Scalar>> blocks{
+        {&phi_chart_, phi_chart_.At(ids[0])}, {&phi_chart_, phi_chart_.At(ids[1])},
+        {&phi_chart_, phi_chart_.At(ids[2])}, {&psi_chart_, psi_chart_.At(ids[0])},
+        {&psi_chart_, psi_chart_.At(ids[1])}, {&psi_chart_, psi_chart_.At(ids[2])}};
+    const Eigen::Vector3d& n = s_.face_normal(f);
+    if (w_.conjugacy > 0.0)
+      AddMapped(problem, ConjugacyResidual::Create(geo_.G[f], n, geo_.S[f], geo_.flat_curvature, s_.face_area(f)),
+                Weight(w_.conjugacy), blocks);
+    if (w_.transversality > 0.0)
+      AddMapped(problem, TransversalityResidual::Create(geo_.G[f], n, hinge_angle_, s_.face_area(f), h_),
+                Weight(w_.transversality * boost_[f]), blocks);
+  }
+  AddSpacing(s_, geo_, h_, w_.spacing, psi_chart_, problem, live);
+  AddSmoothness(edges_, h_, w_.smoothness, psi_chart_, problem, live);
+  if (seams_ != nullptr) AddSeamSmoothness(problem, psi_chart_, seams_->psi_offset, live);
+}
+
+// 1. φ alone.
+Status LevelSetProblem::SolvePhi() {
+  ceres::Problem problem;
+  AddPhiTerms(&problem);
+  HoldTips(&problem);
+  if (problem.NumResidualBlocks() > 0)
+    PQ_RETURN_IF_ERROR(levelset_internal::Solve("phi", options_.max_iterations, &problem, &solution_->solver["phi"]));
+  Project();
+  return Status::Ok();
+}
+
+// 2. ψ with φ held.
+Status LevelSetProblem::SolvePsi() {
+  ceres::Problem problem;
+  AddPsiTerms(&problem);
+  for (double& value : phi_)
+    if (problem.HasParameterBlock(&value)) problem.SetParameterBlockConstant(&value);
+  HoldTips(&problem);
+  if (problem.NumResidualBlocks() > 0)
+    PQ_RETURN_IF_ERROR(levelset_internal::Solve("psi", options_.max_iterations, &problem, &solution_->solver["psi"]));
+  Project();
+  return Status::Ok();
+}
+
+// 3. Both together, so that φ can give way where ψ cannot cross it steeply enough.
+Status LevelSetProblem::SolveJoint() {
+  if (options_.joint_iterations <= 0) return Status::Ok();
+  ceres::Problem problem;
+  AddPhiTerms(&problem);
+  AddPsiTerms(&problem);
+  HoldTips(&problem);
+  PQ_RETURN_IF_ERROR(
+      levelset_internal::Solve("joint", options_.joint_iterations, &problem, &solution_->solver["joint"]));
+  Project();
+  return Status::Ok();
+}
+
+// 4. Local re-solves for the crossing angle (see RaiseCrossings). The best state (fewest
+// fold-overs, then fewest faces below min_angle; the joint solve's counts too) is kept: where
+// no crossing can be raised (closed level lines of φ around an index +1 singularity, which
+// every ψ line must touch somewhere) the boosted weights grow ×4 per round and tear the
+// solution apart (the wavy corpus roof: 23 → 66 fold-overs), while elsewhere a round that
+// adds a fold-over is often undone by later ones (two_holes: ending the rounds at the first
+// such round left 1 fold-over, running them all leaves 0).
+Status LevelSetProblem::CrossingRounds() {
+  LevelSetMetrics best = Measure();
+  std::vector<double> best_phi = phi_, best_psi = psi_;
+  for (int round = 0; round < options_.crossing_rounds; ++round) {
+    std::vector<char> live_phi, live_psi;
+    if (RaiseCrossings(s_, geo_, phi_, psi_, min_angle_, &boost_, &live_phi, &live_psi) == 0) break;
+    for (int v = 0; v < s_.num_vertices(); ++v) {  // a live plus copy frees its parameter
+      if (live_phi[v]) live_phi[phi_chart_.At(v).vertex] = 1;
+      if (live_psi[v]) live_psi[psi_chart_.At(v).vertex] = 1;
+    }
+    hinge_angle_ = min_angle_ + kCrossingMargin / kDegrees;
+    ceres::Problem local;
+    AddPhiTerms(&local, &live_psi);
+    AddPsiTerms(&local, &live_psi);
+    for (int v = 0; v < s_.num_vertices(); ++v) {
+      if (!live_phi[v] && local.HasParameterBlock(&phi_[v])) local.SetParameterBlockConstant(&phi_[v]);
+      if (!live_psi[v] && local.HasParameterBlock(&psi_[v])) local.SetParameterBlockConstant(&psi_[v]);
+    }
+    HoldTips(&local);
+    const std::string name = "crossing_round_" + std::to_string(round + 1);
+    PQ_RETURN_IF_ERROR(levelset_internal::Solve(name, kCrossingIterations, &local, &solution_->solver[name]));
+    Project();
+    const LevelSetMetrics now = Measure();
+    if (std::make_pair(now.foldovers, now.faces_below_min_angle) <=
+        std::make_pair(best.foldovers, best.faces_below_min_angle)) {
+      best = now;
+      best_phi = phi_;
+      best_psi = psi_;
+    }
+  }
+  phi_ = best_phi;  // a round may pass through worse states (more faces below) on its way
+  psi_ = best_psi;
+  return Status::Ok();
+}
+
+// The initial guess: φ from the oriented cross field (weak pull where the guidance is weak),
+// then ψ from the conjugate direction of φ's level lines.
+Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<InteriorEdge>& edges,
+                    const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams,
+                    LevelSetSolution* solution) {
+  const double min_angle = options.min_angle / kDegrees;
+  std::vector<Eigen::Vector3d> target = OrientedCrossField(s, g);
+  for (auto& t : target) t /= h;
+  std::vector<double> omega(s.num_faces());
+  for (int f = 0; f < s.num_faces(); ++f) omega[f] = std::max(g.weight[f], 0.05);
+  if (seams != nullptr) {
+    // On the cut surface the oriented field (`target`, from which SolveWithSeams took the
+    // signs) has no hidden branch cut left: the Poisson fit with the seams' transitions is
+    // the guess (the eigenvector below is for a single-valued φ).
+    seams->phi_offset.assign(seams->cut->num_paths(), 0.0);
+    seams->psi_offset.assign(seams->cut->num_paths(), 0.0);
+    PQ_RETURN_IF_ERROR(SeamedPoissonFit(s, geo, target, omega, h, 0, seams, &solution->phi));
+    return SeamedPoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
+                            std::vector<double>(s.num_faces(), 1.0), h, 1, seams, &solution->psi);
+  }
+  PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, omega, &solution->phi));
+  PQ_RETURN_IF_ERROR(SmallestEigenvector(s, geo, g, edges, h, options.weights, &solution->phi));
+  return PoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
+                    std::vector<double>(s.num_faces(), 1.0), &solution->psi);
+}
+
+}  // namespace
+
+// The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
+// seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the
+// offsets are set here.
+Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
+                   LevelSetSeams* seams, LevelSetSolution* solution) {
+  if (seams != nullptr && seams->cut == nullptr) seams = nullptr;
+  const LevelSetGeometry geo = Precompute(s);
+  const std::vector<InteriorEdge> edges = InteriorEdges(s, geo);
+  PQ_RETURN_IF_ERROR(InitialGuess(s, geo, edges, g, options, h, seams, solution));
+  LevelSetProblem problem(s, geo, edges, g, options, h, seams,
+                          seams != nullptr ? SeamEdgeTerms(s, geo, *seams->cut) : std::vector<SeamEdgeTerm>(),
+                          solution);
+  problem.Project();
+  solution->initial = problem.Measure();
+  PQ_RETURN_IF_ERROR(problem.SolvePhi());
+  PQ_RETURN_IF_ERROR(problem.SolvePsi());
+  PQ_RETURN_IF_ERROR(problem.SolveJoint());
+  PQ_RETURN_IF_ERROR(problem.CrossingRounds());
+  solution->metrics = problem.Measure();
+  return Status::Ok();
+}
+
+}  // namespace levelset_internal
+}  // namespace pqlayout
