@@ -59,6 +59,7 @@ struct LevelSetSeams {
   int cancelled_pairs = 0;                  // pairs of ±½ singularities cancelled (close, or same sign in one weak zone: no seam)
   int light_paths = 0;                      // routes with too little weighted length to be worth a seam
   int orientable_tips = 0;                  // singularities the guidance does not flip around on the cut surface
+  int ring_holes = 0;                       // hole seams neither family jumps across by more than 2 levels
   nlohmann::json ToJson() const;
 };
 

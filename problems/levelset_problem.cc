@@ -311,7 +311,10 @@ Status LevelSetProblem::CrossingRounds() {
   return Status::Ok();
 }
 
-// The initial guess: φ from the oriented cross field (weak pull where the guidance is weak),
+}  // namespace
+
+// The initial guess (seams: null, or with the seams' transitions; their offsets are set here):
+// φ from the oriented cross field (weak pull where the guidance is weak),
 // then ψ from the conjugate direction of φ's level lines.
 Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<InteriorEdge>& edges,
                     const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams,
@@ -336,8 +339,6 @@ Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const st
   return PoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
                     std::vector<double>(s.num_faces(), 1.0), &solution->psi);
 }
-
-}  // namespace
 
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
 // seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the

@@ -212,6 +212,23 @@ TEST(LevelSets, AnnulusWithRadialGuidanceNeedsATranslationSeam) {
     EXPECT_NEAR(seamed.phi_cut[pair.plus], seamed.phi_cut[pair.minus] + seamed.seams.phi_offset[0], 1e-9);
 }
 
+// The same annulus with a uniform guidance (the x axis): neither family winds round the hole
+// (both periods 0), so the hole seam is not cut (uncut_ring_holes) and φ, ψ are the plane's
+// coordinates, single-valued.
+TEST(LevelSets, AnnulusWithUniformGuidanceGetsNoSeam) {
+  const SurfaceModel s(testing::GeneratedMesh("annulus", 20.0, 8.0, 0.0, 0.6));
+  const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d&) { return Eigen::Vector3d(1, 0, 0); });
+  LevelsetOptions options;
+  options.working_edge = 0.3;
+  LevelSetSolution solution;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, &solution).ok());
+  EXPECT_TRUE(solution.seams.cut == nullptr);
+  EXPECT_EQ(solution.seams.ring_holes, 1);
+  EXPECT_EQ(solution.seams.ToJson()["uncut_ring_holes"], 1);
+  EXPECT_LE(solution.metrics.alignment_rms_deg, 1.0);
+  EXPECT_EQ(solution.metrics.foldovers, 0);
+}
+
 // Flat disc with a line field of index −½ at the origin (direction angle −θ/2, a trisector
 // like the Great Court's umbilics): the field turns by −π once round, so φ must change sign
 // across a seam from the singularity to the boundary (sign −1), with a branch point there.
