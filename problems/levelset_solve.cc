@@ -256,8 +256,8 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   solution->metrics = coarse.metrics;
   solution->solver = coarse.solver;
   solution->working_faces = working->num_faces();
-  if (coarse.seams.cut) {
-    solution->seams = std::move(coarse.seams);
+  solution->seams = std::move(coarse.seams);  // with the counters of the seams not cut
+  if (solution->seams.cut) {
     solution->seams.working = working;
     solution->phi_cut = std::move(coarse.phi_cut);
     solution->psi_cut = std::move(coarse.psi_cut);
