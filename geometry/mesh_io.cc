@@ -8,6 +8,7 @@
 #include <glog/logging.h>
 
 #include "base/atomic_file.h"
+#include "base/format_number.h"
 #include "geometry/mesh_readers.h"
 #include "geometry/mesh_validation.h"
 
@@ -28,12 +29,24 @@ std::string JoinExtensions(const std::vector<std::string>& exts) {
 
 // OBJ and ASCII PLY are written here, not by OpenMesh's writers, which go through single
 // precision points. Coordinates keep 17 significant digits (exact double round trip).
+constexpr int kPointDigits = 17;
+
+// "x y z\n".
+template <typename Point>
+void WritePoint(const Point& p, std::ostream& out) {
+  for (int k = 0; k < 3; ++k) {
+    WriteNumber(out, p[k], kPointDigits);
+    out.put(k < 2 ? ' ' : '\n');
+  }
+}
+
 template <typename Mesh>
 void WriteObj(const Mesh& mesh, std::ostream& out) {
   out << "# pqlayout: " << mesh.n_vertices() << " vertices, " << mesh.n_faces() << " faces\n";
   for (const auto v : mesh.vertices()) {
     const auto& p = mesh.point(v);
-    out << "v " << p[0] << " " << p[1] << " " << p[2] << "\n";
+    out << "v ";
+    WritePoint(p, out);
   }
   for (const auto f : mesh.faces()) {
     out << "f";
@@ -50,10 +63,7 @@ void WritePly(const Mesh& mesh, std::ostream& out) {
       << "\nproperty list uchar int vertex_indices\n";
   if (colors) out << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   out << "end_header\n";
-  for (const auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    out << p[0] << " " << p[1] << " " << p[2] << "\n";
-  }
+  for (const auto v : mesh.vertices()) WritePoint(mesh.point(v), out);
   for (const auto f : mesh.faces()) {
     out << mesh.valence(f);
     for (const auto v : mesh.fv_range(f)) out << " " << v.idx();
@@ -72,7 +82,6 @@ Status WriteMeshImpl(const Mesh& mesh, const std::string& path) {
     return Status::Internal(path + ": cannot write meshes of type '" + ext + "' (use .obj or .ply)");
   return WriteFileAtomically(path, [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary);
-    out.precision(17);
     if (ext == ".obj") WriteObj(mesh, out);
     else WritePly(mesh, out);
     out.close();

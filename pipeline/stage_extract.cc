@@ -114,6 +114,10 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(cut_surface, seams, levelsets.phi_cut, levelsets.psi_cut, options.corner_angle,
                                        options.min_edge * h, &quads));
     if (levelsets.seams.working) OnReference(surface, &quads);
+  } else if (levelsets.working) {  // single-valued, solved on a remeshed working mesh
+    PQ_RETURN_IF_ERROR(ExtractQuadMesh(*levelsets.working, levelsets.phi_working, levelsets.psi_working,
+                                       options.corner_angle, options.min_edge * h, &quads));
+    OnReference(surface, &quads);
   } else {
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(surface, levelsets.phi, levelsets.psi, options.corner_angle,
                                        options.min_edge * h, &quads));

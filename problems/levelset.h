@@ -71,6 +71,11 @@ struct LevelSetSolution {
   LevelSetMetrics metrics;       // of the result
   nlohmann::json solver;         // Ceres summaries of the solves
   int working_faces = 0;         // triangles of the mesh the solve ran on
+  // The remeshed working mesh when the solve ran on one (null: on the reference), with φ, ψ
+  // per vertex there (without seams; with seams they are phi_cut / psi_cut on its cut):
+  // extraction traces the level lines on the mesh they are piecewise linear on.
+  std::shared_ptr<const SurfaceModel> working;
+  std::vector<double> phi_working, psi_working;
 };
 
 Status SolveLevelSets(const SurfaceModel& surface, const GuidanceField& guidance, const LevelsetOptions& options,

@@ -257,10 +257,14 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   solution->solver = coarse.solver;
   solution->working_faces = working->num_faces();
   solution->seams = std::move(coarse.seams);  // with the counters of the seams not cut
+  solution->working = working;
   if (solution->seams.cut) {
     solution->seams.working = working;
     solution->phi_cut = std::move(coarse.phi_cut);
     solution->psi_cut = std::move(coarse.psi_cut);
+  } else {
+    solution->phi_working = std::move(coarse.phi);
+    solution->psi_working = std::move(coarse.psi);
   }
   return Status::Ok();
 }
