@@ -402,11 +402,48 @@ int CollapseBoundaryTriangles(double min_angle, Polygons* m) {
   return collapsed;
 }
 
+// An interior 6- or 8-gon that no diagonals cut well (corners alternately sharp and flat, as
+// around a −½ or −1 singularity of the guidance: the GC curvature layout, the canopy, the wavy
+// roof) gets a vertex at its centroid joined to every other corner: 3 or 4 quads around a new
+// vertex of valence 3 or 4, if every quad angle is within [min_angle, 180° − min_angle]. It is
+// marked `centre`: the extraction puts it on the surface (PlaceCentreVertices).
+namespace {
+
+bool CentreSplit(const std::vector<int>& face, const std::set<std::pair<int, int>>& halfedges, double min_angle,
+                 Polygons* m, std::vector<std::vector<int>>* faces) {
+  const size_t n = face.size();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const int v : face) centre += m->position[v] / static_cast<double>(n);
+  const int c = static_cast<int>(m->position.size());
+  m->position.push_back(centre);
+  QuadMeshVertex origin;
+  origin.centre = true;
+  m->origin.push_back(origin);
+  double best_score = min_angle;
+  std::vector<std::vector<int>> best;
+  for (size_t parity = 0; parity < 2; ++parity) {
+    std::vector<std::vector<int>> pieces;
+    for (size_t k = parity; k < n + parity; k += 2)
+      pieces.push_back({face[k % n], face[(k + 1) % n], face[(k + 2) % n], c});
+    const double score = CutScore(*m, face, pieces, halfedges, nullptr);
+    if (score >= best_score) best_score = score, best = std::move(pieces);
+  }
+  if (best.empty()) {
+    m->position.pop_back();
+    m->origin.pop_back();
+    return false;
+  }
+  faces->insert(faces->end(), best.begin(), best.end());
+  return true;
+}
+
+}  // namespace
+
 // Cells that are large polygons are cut into quads by the diagonals that give the
 // best-shaped quads, if every quad angle is within [min_angle, 180° − min_angle]:
 // - a cell that touches no boundary and has 6 or 8 sides (where the curves fan out around a
-//   singularity of the guidance): 2 or 3 quads; the singularity then becomes a vertex of
-//   valence 3 or 5, as in any quad mesh;
+//   singularity of the guidance): 2 or 3 quads, the singularity then a vertex of valence 3 or
+//   5, as in any quad mesh; failing that 3 or 4 quads around a centre vertex (CentreSplit);
 // - a boundary cell of 6 to 10 sides (a level line that turned back near the boundary):
 //   quads, plus one triangle cut off at a boundary vertex if the number of sides is odd (so
 //   that every cell off the boundary stays a quad); no diagonal
@@ -450,6 +487,10 @@ std::pair<int, int> SplitLargePolygons(double min_angle, Polygons* m) {
     for (const auto& pieces : options) {
       const double score = CutScore(*m, face, pieces, halfedges, touches_boundary ? &on_boundary : nullptr);
       if (score >= best_score) best_score = score, best = &pieces;
+    }
+    if (best == nullptr && !touches_boundary && (n == 6 || n == 8) && CentreSplit(face, halfedges, min_angle, m, &faces)) {
+      ++split.first;
+      continue;
     }
     if (best == nullptr) {
       faces.push_back(std::move(face));

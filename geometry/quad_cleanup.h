@@ -59,8 +59,9 @@ int CollapseBoundaryTriangles(double min_angle, Polygons* m);
 // Cells that are large polygons are cut into quads by the diagonals that give the
 // best-shaped quads, if every quad angle is within [min_angle, 180° − min_angle]:
 // - a cell that touches no boundary and has 6 or 8 sides (where the curves fan out around a
-//   singularity of the guidance): 2 or 3 quads; the singularity then becomes a vertex of
-//   valence 3 or 5, as in any quad mesh;
+//   singularity of the guidance): 2 or 3 quads, the singularity then a vertex of valence 3 or
+//   5, as in any quad mesh; failing that 3 or 4 quads around a new centre vertex (marked
+//   `centre`: the caller puts it on the surface);
 // - a boundary cell of 6 to 10 sides (a level line that turned back near the boundary):
 //   quads, plus one triangle cut off at a boundary vertex if the number of sides is odd (so
 //   that every cell off the boundary stays a quad); no diagonal

@@ -1,6 +1,7 @@
 #include "geometry/quad_extraction.h"
 
 #include "geometry/boundary_refinement.h"
+#include "geometry/closest_point.h"
 #include "geometry/quad_cleanup.h"
 #include "geometry/quad_extraction_cells.h"
 #include "geometry/planarity.h"
@@ -10,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <set>
 #include <string>
@@ -198,6 +200,22 @@ void CleanUpAndBuild(double min_edge_length, bool pair_boundary_triangles, Polyg
   }
 }
 
+// The centre vertices SplitLargePolygons added moved from their polygon's centroid onto the
+// surface.
+void PlaceCentreVertices(const SurfaceModel& surface, ExtractedMesh* out) {
+  std::unique_ptr<ClosestPointQuery> query;
+  for (size_t v = 0; v < out->origin.size(); ++v) {
+    QuadMeshVertex& origin = out->origin[v];
+    if (!origin.centre) continue;
+    if (!query) query = std::make_unique<ClosestPointQuery>(surface);
+    const SurfacePoint p = query->OnSurface(ToEigen(out->mesh.point(VertexHandle(v))));
+    out->mesh.set_point(VertexHandle(v), ToOpenMesh(p.point));
+    origin.face = p.element;
+    origin.barycentric = TriangleBarycentric(surface, p.element, p.point);
+    ++out->stats.centre_vertices;
+  }
+}
+
 Status Extract(const SurfaceModel& surface, const SurfaceInfo& info, const std::vector<double>& phi,
                const std::vector<double>& psi, double min_edge_length, ExtractedMesh* out,
                bool pair_boundary_triangles) {
@@ -259,6 +277,7 @@ Status Extract(const SurfaceModel& surface, const SurfaceInfo& info, const std::
   }
   Polygons polygons = LoopPolygons(cut, loop_points, loop_carriers, &out->stats);
   CleanUpAndBuild(min_edge_length, pair_boundary_triangles, &polygons, out);
+  PlaceCentreVertices(surface, out);
   return Status::Ok();
 }
 

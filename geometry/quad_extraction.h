@@ -54,6 +54,7 @@ struct QuadMeshVertex {
   Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
   bool on_boundary = false;  // on the reference boundary
   bool corner = false;       // a boundary corner of the reference surface
+  bool centre = false;       // added by the clean-up at the centre of a large cell (not a crossing)
 };
 
 struct ExtractionStats {
@@ -65,6 +66,7 @@ struct ExtractionStats {
   int resplit_boundary_pairs = 0;  // boundary triangle + pentagon pairs re-split into two quads
   int collapsed_boundary_triangles = 0;  // crossings just inside the boundary moved onto it
   int split_interior_polygons = 0;       // interior 6- and 8-gons cut into quads
+  int centre_vertices = 0;               // ... of them around a new vertex at their centre
   int split_boundary_polygons = 0;       // boundary 6- to 10-gons cut into quads (and a triangle)
   int floating_faces = 0;  // faces of parts that touch no reference boundary (dropped: nothing holds them)
   int refined_boundary_edges = 0;        // boundary vertices inserted where a chord left a curved boundary

@@ -68,6 +68,7 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"resplit_boundary_pairs", stats.resplit_boundary_pairs},
           {"collapsed_boundary_triangles", stats.collapsed_boundary_triangles},
           {"split_interior_polygons", stats.split_interior_polygons},
+          {"centre_vertices", stats.centre_vertices},
           {"split_boundary_polygons", stats.split_boundary_polygons},
           {"refined_boundary_edges", stats.refined_boundary_edges},
           {"slid_boundary_vertices", stats.slid_boundary_vertices},

@@ -1,0 +1,101 @@
+// The clean-up of the extracted polygons (geometry/quad_cleanup.h) on small hand-made meshes:
+// floating parts, the collapse's refusals, large cells cut into quads.
+#include "geometry/quad_cleanup.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace pqlayout {
+
+// A part of the extracted mesh that touches no reference boundary (an island ringed by cells
+// left out where the level sets fold over) is dropped; a part joined to the boundary through
+// interior faces stays.
+TEST(QuadCleanup, DropsOnlyPartsThatTouchNoBoundary) {
+  extraction_internal::Polygons m;
+  for (int v = 0; v < 10; ++v) {
+    m.position.emplace_back(v, v % 3, 0.0);
+    m.origin.push_back(QuadMeshVertex());
+  }
+  m.origin[0].on_boundary = true;
+  m.faces = {{0, 1, 2, 3}, {2, 3, 4, 5}, {6, 7, 8, 9}};
+  EXPECT_EQ(extraction_internal::DropFloatingParts(&m), 1);
+  ASSERT_EQ(m.faces.size(), 2u);
+  EXPECT_EQ(m.faces[0], (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(m.faces[1], (std::vector<int>{2, 3, 4, 5}));
+  m.origin[0].on_boundary = false;  // nothing holds the rest either
+  EXPECT_EQ(extraction_internal::DropFloatingParts(&m), 2);
+  EXPECT_TRUE(m.faces.empty());
+}
+
+// The collapse's refusals, named: on a 3 × 3 grid of quads the interior edge (5, 6) may
+// collapse; as a chord between two reference-boundary points, or between two corners, not.
+TEST(QuadCleanup, CollapseBlockerNamesWhyAnEdgeStays) {
+  extraction_internal::Polygons m;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      m.position.emplace_back(i, j, 0.0);
+      m.origin.push_back(QuadMeshVertex());
+    }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) m.faces.push_back({4 * j + i, 4 * j + i + 1, 4 * j + i + 5, 4 * j + i + 4});
+  EXPECT_EQ(extraction_internal::CollapseBlocker(m, 5, 6), nullptr);
+  EXPECT_STREQ(extraction_internal::CollapseBlocker(m, 0, 5), "not an edge");
+  EXPECT_EQ(extraction_internal::CollapseBlocker(m, 1, 5), nullptr);  // 5 moves onto the boundary point 1
+  m.origin[5].on_boundary = m.origin[6].on_boundary = true;
+  EXPECT_NE(std::string(extraction_internal::CollapseBlocker(m, 5, 6)).find("chord"), std::string::npos);
+  m.origin[0].corner = m.origin[1].corner = true;
+  EXPECT_STREQ(extraction_internal::CollapseBlocker(m, 0, 1), "both ends are boundary corners");
+}
+
+// An interior hexagon with corners alternately 1 and 0.6 from its centre: every cut by a
+// diagonal leaves a quad with a 13° corner (below the 20° bound), so it used to stay a
+// hexagon; around a centre vertex joined to the three near corners each quad's smallest
+// corner or supplement is 60°. A ring of quads keeps the hexagon off the boundary.
+TEST(QuadCleanup, AHexagonNoDiagonalCutsWellGetsACentreVertex) {
+  extraction_internal::Polygons m;
+  for (int k = 0; k < 6; ++k) {
+    const double r = k % 2 == 0 ? 1.0 : 0.6, a = k * M_PI / 3.0;
+    m.position.emplace_back(r * std::cos(a), r * std::sin(a), 0.0);
+    m.origin.push_back(QuadMeshVertex());
+  }
+  for (int k = 0; k < 6; ++k) {
+    m.position.push_back(3.0 * m.position[k]);
+    m.origin.push_back(QuadMeshVertex());
+  }
+  m.faces.push_back({0, 1, 2, 3, 4, 5});
+  for (int k = 0; k < 6; ++k) m.faces.push_back({(k + 1) % 6, k, 6 + k, 6 + (k + 1) % 6});
+  const auto [interior, boundary] = extraction_internal::SplitLargePolygons(extraction_internal::kMinResplitAngle, &m);
+  EXPECT_EQ(interior, 1);
+  EXPECT_EQ(boundary, 0);
+  ASSERT_EQ(m.position.size(), 13u);
+  EXPECT_TRUE(m.origin[12].centre);
+  EXPECT_LT(m.position[12].norm(), 1e-12);  // the hexagon's centroid
+  ASSERT_EQ(m.faces.size(), 9u);
+  int around = 0;
+  for (const auto& face : m.faces) {
+    EXPECT_EQ(face.size(), 4u);
+    const auto at = std::find(face.begin(), face.end(), 12);
+    if (at == face.end()) continue;
+    ++around;
+    const size_t k = at - face.begin();  // the centre's neighbours: the near corners 1, 3, 5
+    EXPECT_EQ(face[(k + 1) % 4] % 2, 1);
+    EXPECT_EQ(face[(k + 3) % 4] % 2, 1);
+  }
+  EXPECT_EQ(around, 3);
+  // A regular hexagon is cut by a diagonal (two quads, 60° corners): no centre vertex.
+  extraction_internal::Polygons regular = m;
+  regular.position.resize(12);
+  regular.origin.resize(12);
+  for (int k = 0; k < 12; ++k) regular.position[k] = (k < 6 ? 1.0 : 3.0) * Eigen::Vector3d(std::cos(k * M_PI / 3.0), std::sin(k * M_PI / 3.0), 0.0);
+  regular.faces = {{0, 1, 2, 3, 4, 5}};
+  for (int k = 0; k < 6; ++k) regular.faces.push_back({(k + 1) % 6, k, 6 + k, 6 + (k + 1) % 6});
+  EXPECT_EQ(extraction_internal::SplitLargePolygons(extraction_internal::kMinResplitAngle, &regular).first, 1);
+  EXPECT_EQ(regular.position.size(), 12u);
+  EXPECT_EQ(regular.faces.size(), 8u);
+}
+
+}  // namespace pqlayout
