@@ -16,7 +16,6 @@ namespace {
 
 // ---- Short edges ---------------------------------------------------------------------------
 
-
 bool CyclicallyAdjacent(const std::vector<int>& face, int u, int v) {
   const size_t n = face.size();
   for (size_t k = 0; k < n; ++k) {
@@ -85,11 +84,6 @@ double CutScore(const Polygons& m, const std::vector<int>& face, const std::vect
   }
   return score;
 }
-
-}  // namespace
-
-
-namespace {
 
 // The adjacency CollapseRound and CollapseBlocker read.
 struct Adjacency {
@@ -490,20 +484,15 @@ std::pair<int, int> SplitLargePolygons(double min_angle, Polygons* m) {
     }
     if (best == nullptr && !touches_boundary && (n == 6 || n == 8) && CentreSplit(face, halfedges, min_angle, m, &faces)) {
       ++split.first;
-      continue;
-    }
-    if (best == nullptr) {
+    } else if (best == nullptr) {
       faces.push_back(std::move(face));
-      continue;
+    } else {
+      for (const auto& piece : *best) faces.push_back(piece);
+      ++(touches_boundary ? split.second : split.first);
     }
-    for (const auto& piece : *best) faces.push_back(piece);
-    ++(touches_boundary ? split.second : split.first);
   }
   m->faces = std::move(faces);
   return split;
 }
-
-// Loops with fewer than 3 output vertices (a lens cut off by one curve) get extra loop
-// points, boundary points first, each as far as possible from those already kept.
 
 }  // namespace pqlayout::extraction_internal
