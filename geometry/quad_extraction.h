@@ -55,6 +55,7 @@ struct QuadMeshVertex {
   bool on_boundary = false;  // on the reference boundary
   bool corner = false;       // a boundary corner of the reference surface
   bool centre = false;       // added by the clean-up at the centre of a large cell (not a crossing)
+  bool cap = false;          // on the ring of a cap that closes a pole (geometry/cap_fill.h)
 };
 
 struct ExtractionStats {
@@ -71,6 +72,7 @@ struct ExtractionStats {
   int floating_faces = 0;  // faces of parts that touch no reference boundary (dropped: nothing holds them)
   int refined_boundary_edges = 0;        // boundary vertices inserted where a chord left a curved boundary
   int slid_boundary_vertices = 0;        // boundary vertices moved along the boundary to even out chords
+  int caps = 0;                          // holes of poles closed by one polygon (geometry/cap_fill.h)
   // Seams: piece edges on a seam with no piece of the corresponding cell on the other side
   // (0 when the values satisfy the transitions; otherwise the mesh has a slit there).
   int unmatched_seam_edges = 0;
@@ -131,8 +133,9 @@ struct ExtractedMeshMetrics {
   double boundary_deviation_edges = 0.0;     // ... of any point of a mesh boundary edge (chord sagitta)
   int n_reference_corners = 0;               // boundary corners of the reference surface
   int n_corner_vertices = 0;                 // ... that are mesh vertices
-  // Faces that are not quads and touch no boundary vertex: sides and centroid.
+  // Faces that are not quads and touch no boundary vertex, caps aside: sides and centroid.
   std::vector<std::pair<int, Eigen::Vector3d>> interior_non_quads;
+  std::vector<std::pair<int, Eigen::Vector3d>> caps;  // the caps of poles (geometry/cap_fill.h)
 };
 
 // Why the extraction's short-edge collapse would not merge the ends of mesh edge (u, v) (a

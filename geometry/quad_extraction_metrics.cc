@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "geometry/boundary_refinement.h"
+#include "geometry/cap_fill.h"
 #include "geometry/planarity.h"
 
 namespace pqlayout {
@@ -38,7 +39,7 @@ ExtractedMeshMetrics MeasureExtractedMesh(const SurfaceModel& surface, const Ext
     if (sides != 4 && !touches_boundary) {
       Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
       for (const auto& p : polygon) centroid += p / sides;
-      m.interior_non_quads.push_back({sides, centroid});
+      (IsCapFace(extracted, f) ? m.caps : m.interior_non_quads).push_back({sides, centroid});
     }
   }
   if (m.n_faces > 0) {

@@ -221,6 +221,9 @@ KeyTable::KeyTable(Config* c) {
   Bool("levelset.seams", &c->levelset.seams,
        "cut seams from the guidance's ±½ singularities and from holes to the boundary; φ, ψ jump by whole levels "
        "across them (branch points, as in the paper's curvature reference); false: single-valued φ, ψ");
+  Bool("levelset.poles", &c->levelset.poles,
+       "a crown of the guidance (a whole turn, index +1: a dome's top) becomes a pole: one family rings it, the "
+       "other fans out of it, and a cap polygon (a crown ring) closes the innermost ring; needs levelset.seams");
   Number("levelset.working_edge", &c->levelset.working_edge, NonNegative(kMaxLength),
          "edge length of the mesh φ, ψ are solved on, m (0: 0.4 h); a reference finer than 0.7 × this is remeshed");
 

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "geometry/boundary_refinement.h"
+#include "geometry/cap_fill.h"
 #include "geometry/closest_point.h"
 #include "geometry/mesh_io.h"
 #include "geometry/planarity.h"
@@ -24,6 +25,8 @@ constexpr double kDeltaColourScale = 0.025;  // δ at the top of the colour map
 // How far (× h, along the boundary) a level line's end may slide to even out boundary chords:
 // the last segment of the line then turns by at most ~15°.
 constexpr double kBoundarySlide = 0.25;
+// A pole's first row of cells within this × h of its cap's rim is merged into the cap.
+constexpr double kCapRow = 0.5;
 
 void ColourByPlanarity(PolyMesh* mesh) {
   mesh->request_face_colors();
@@ -45,6 +48,8 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
   nlohmann::json non_quads = nlohmann::json::array();
   for (const auto& [sides, c] : m.interior_non_quads)
     non_quads.push_back({{"sides", sides}, {"centroid", {c.x(), c.y(), c.z()}}});
+  nlohmann::json caps = nlohmann::json::array();
+  for (const auto& [sides, c] : m.caps) caps.push_back({{"sides", sides}, {"centroid", {c.x(), c.y(), c.z()}}});
   return {{"n_vertices", m.n_vertices},
           {"n_faces", m.n_faces},
           {"n_edges", m.n_edges},
@@ -64,6 +69,7 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"euler_characteristic", m.euler_characteristic},
           {"boundary_loops", m.boundary_loops},
           {"interior_non_quads", non_quads},
+          {"caps", caps},
           {"collapsed_edges", stats.collapsed_edges},
           {"resplit_boundary_pairs", stats.resplit_boundary_pairs},
           {"collapsed_boundary_triangles", stats.collapsed_boundary_triangles},
@@ -97,6 +103,12 @@ void OnReference(const SurfaceModel& reference, ExtractedMesh* quads) {
   }
 }
 
+std::vector<CapHole> Caps(const LevelSetSolution& levelsets) {
+  std::vector<CapHole> caps;
+  for (const LevelSetCap& c : levelsets.caps) caps.push_back({c.centre, c.radius});
+  return caps;
+}
+
 }  // namespace
 
 Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
@@ -114,10 +126,12 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
     const SurfaceModel& cut_surface = levelsets.seams.working ? *levelsets.seams.working : surface;
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(cut_surface, seams, levelsets.phi_cut, levelsets.psi_cut, options.corner_angle,
                                        options.min_edge * h, &quads));
+    quads.stats.caps = FillCaps(Caps(levelsets), h, kCapRow * h, &quads);
     if (levelsets.seams.working) OnReference(surface, &quads);
-  } else if (levelsets.working) {  // single-valued, solved on a remeshed working mesh
+  } else if (levelsets.working) {  // single-valued, solved on a remeshed (or holed) working mesh
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(*levelsets.working, levelsets.phi_working, levelsets.psi_working,
                                        options.corner_angle, options.min_edge * h, &quads));
+    quads.stats.caps = FillCaps(Caps(levelsets), h, kCapRow * h, &quads);
     OnReference(surface, &quads);
   } else {
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(surface, levelsets.phi, levelsets.psi, options.corner_angle,

@@ -44,6 +44,11 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   (*metrics)["working_mesh_triangles"] = solution.working_faces;
   (*metrics)["density_scale"] = density_scale;
   (*metrics)["seams"] = solution.seams.ToJson();
+  nlohmann::json poles = nlohmann::json::array();
+  for (const LevelSetCap& c : solution.caps)
+    poles.push_back({{"centre", {c.centre.x(), c.centre.y(), c.centre.z()}}, {"cap_radius", c.radius}});
+  (*metrics)["poles"] = poles;
+  if (!solution.rejected_poles.is_null()) (*metrics)["poles_not_kept"] = solution.rejected_poles;
   PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
   PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
   const auto& m = solution.metrics;

@@ -63,6 +63,15 @@ struct LevelSetSeams {
   nlohmann::json ToJson() const;
 };
 
+// A pole of the layout at a crown of the guidance (a whole turn, index +1: a dome's top, a
+// bump): the disc of `radius` round `centre` is left out of the solve, so that one family
+// rings it and the other fans out of it, jumping by whole levels across a hole seam; the
+// extraction closes the innermost ring with one polygon, the cap (a crown ring, an oculus).
+struct LevelSetCap {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
 struct LevelSetSolution {
   std::vector<double> phi, psi;  // per vertex (the first copy's value where seams cut); level lines at integers
   LevelSetSeams seams;           // seams.cut null: φ, ψ single-valued
@@ -76,6 +85,8 @@ struct LevelSetSolution {
   // extraction traces the level lines on the mesh they are piecewise linear on.
   std::shared_ptr<const SurfaceModel> working;
   std::vector<double> phi_working, psi_working;
+  std::vector<LevelSetCap> caps;  // poles (levelset.poles); the working mesh then has a hole at each
+  nlohmann::json rejected_poles;  // crowns tried as poles and not kept (null: none tried, or kept)
 };
 
 Status SolveLevelSets(const SurfaceModel& surface, const GuidanceField& guidance, const LevelsetOptions& options,

@@ -85,6 +85,11 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
 
 // levelset_solve.cc
 GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceField& g, const SurfaceModel& working);
+std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double h, int* cancelled, std::vector<Eigen::Vector3d>* crowns);
 Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSolution* solution);
+
+// levelset_poles.cc
+std::vector<LevelSetCap> FindCaps(const SurfaceModel& s, const GuidanceField& g, double h);
+Status CutCaps(const SurfaceModel& s, const GuidanceField& g, std::vector<LevelSetCap>* caps, std::shared_ptr<const SurfaceModel>* holed, GuidanceField* holed_guidance);
 
 }  // namespace pqlayout::levelset_internal

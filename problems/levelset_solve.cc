@@ -46,6 +46,7 @@ constexpr double kReuseReference = 0.7;       // solve on the reference if its m
 constexpr double kDefaultWorkingEdge = 0.4;   // × h: CGAL lands near 12k triangles on the Great Court at h = 3 m
 constexpr int kRemeshIterations = 3;
 constexpr double kCancelDistance = 2.0;  // × h: two ±½ singularities closer than this get no seam
+constexpr double kPoleGain = 0.75;      // poles are kept if they align to below this × the layout without
 constexpr double kMinSeamWeight = 1.0;   // × h: a seam whose path has less weighted length is not cut
 
 // The tips of the seams: the guidance's singularities of index ±½, less pairs, closest
@@ -55,10 +56,15 @@ constexpr double kMinSeamWeight = 1.0;   // × h: a seam whose path has less wei
 // nearly isotropic field there splits in two), so a single-valued φ crosses it; two seams
 // would only add two branch points (on the L-shaped corpus roof the two halves of the strain
 // crown, 2.3 h apart in its weak zone, made φ fan out of two branch points into 28 triangles).
-std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double h, int* cancelled) {
+// crowns (may be null): where the field turns a whole turn (index +1, or a cancelled pair of
+// +½ at its midpoint), for the poles (levelset_poles.cc).
+std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double h, int* cancelled,
+                          std::vector<Eigen::Vector3d>* crowns) {
   std::vector<LineFieldSingularity> half;
-  for (const auto& x : FindLineFieldSingularities(s, g.direction))
+  for (const auto& x : FindLineFieldSingularities(s, g.direction)) {
     if (std::abs(std::abs(x.index) - 0.5) < 1e-9) half.push_back(x);
+    else if (crowns != nullptr && std::abs(x.index - 1.0) < 1e-9) crowns->push_back(x.position);
+  }
   // Weak zones: vertices joined through faces with weight < 0.5 (-1: on no such face).
   std::vector<int> zone(s.num_vertices(), -1), parent(s.num_vertices());
   std::iota(parent.begin(), parent.end(), 0);
@@ -86,6 +92,8 @@ std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double 
     if (gone[i] || gone[j]) continue;
     gone[i] = gone[j] = 1;
     ++*cancelled;
+    if (crowns != nullptr && half[i].index > 0.0 && half[j].index > 0.0)
+      crowns->push_back(0.5 * (half[i].position + half[j].position));
   }
   std::vector<int> tips;
   for (size_t i = 0; i < half.size(); ++i)
@@ -155,7 +163,7 @@ Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const Level
                       LevelSetSolution* solution) {
   LevelSetSeams& seams = solution->seams;
   seams = LevelSetSeams();
-  const std::vector<int> tips = SeamTips(s, g, h, &seams.cancelled_pairs);
+  const std::vector<int> tips = SeamTips(s, g, h, &seams.cancelled_pairs, nullptr);
   std::vector<std::vector<int>> paths;
   for (auto& path : RouteSeams(s, g.weight, tips)) {
     if (PathWeight(s, g.weight, path) >= kMinSeamWeight * h) paths.push_back(std::move(path));
@@ -212,28 +220,16 @@ nlohmann::json LevelSetSeams::ToJson() const {
           {"paths", paths}};
 }
 
-Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
+namespace {
+
+// φ, ψ solved on `working` (a remeshed or holed copy of the reference s), then interpolated
+// to the reference's vertices for the field files; extraction runs on `working`.
+Status SolveOnWorking(const SurfaceModel& s, std::shared_ptr<const SurfaceModel> working,
+                      const GuidanceField& working_guidance, const LevelsetOptions& options, double h,
                       LevelSetSolution* solution) {
-  const double working_edge = options.working_edge > 0.0 ? options.working_edge : kDefaultWorkingEdge * h;
-  const double reference_edge = MeanEdgeLength(s.mesh());
-  if (reference_edge >= kReuseReference * working_edge) {
-    solution->working_faces = s.num_faces();
-    if (options.seams) return SolveWithSeams(s, g, options, h, solution);
-    return SolveOnMesh(s, g, options, h, nullptr, solution);
-  }
-  // A reference much finer than the layout needs: solve on a remeshed copy whose edges are
-  // working_edge long (the level lines are h apart; 0.4 h resolves them), then interpolate
-  // φ and ψ to the reference's vertices. Stage time then follows h, not the reference size.
-  TriMesh working_mesh;
-  PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, kRemeshIterations, &working_mesh)
-                         .WithContext("levelset working mesh"));
-  auto working = std::make_shared<const SurfaceModel>(std::move(working_mesh));
-  LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference << " × working edge "
-            << working_edge << " m: solving on a remeshed copy with " << working->num_faces() << " triangles";
   LevelSetSolution coarse;
   // With seams the solution stays on the working mesh's cut surface (extraction runs there);
   // the per-vertex φ, ψ interpolated below (first copies) are for the field files only.
-  const GuidanceField working_guidance = TransferGuidance(s, g, *working);
   if (options.seams) PQ_RETURN_IF_ERROR(SolveWithSeams(*working, working_guidance, options, h, &coarse));
   else PQ_RETURN_IF_ERROR(SolveOnMesh(*working, working_guidance, options, h, nullptr, &coarse));
   const ClosestPointQuery query(*working);
@@ -266,6 +262,68 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
     solution->phi_working = std::move(coarse.phi);
     solution->psi_working = std::move(coarse.psi);
   }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
+                      LevelSetSolution* solution) {
+  const double working_edge = options.working_edge > 0.0 ? options.working_edge : kDefaultWorkingEdge * h;
+  const double reference_edge = MeanEdgeLength(s.mesh());
+  std::shared_ptr<const SurfaceModel> working;
+  GuidanceField working_guidance;
+  if (reference_edge < kReuseReference * working_edge) {
+    // A reference much finer than the layout needs: solve on a remeshed copy whose edges are
+    // working_edge long (the level lines are h apart; 0.4 h resolves them), then interpolate
+    // φ and ψ to the reference's vertices. Stage time then follows h, not the reference size.
+    TriMesh working_mesh;
+    PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, kRemeshIterations, &working_mesh)
+                           .WithContext("levelset working mesh"));
+    working = std::make_shared<const SurfaceModel>(std::move(working_mesh));
+    LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference
+              << " × working edge " << working_edge << " m: solving on a remeshed copy with " << working->num_faces()
+              << " triangles";
+    working_guidance = TransferGuidance(s, g, *working);
+  }
+  solution->caps.clear();
+  solution->rejected_poles = nlohmann::json();
+  const auto plain = [&](LevelSetSolution* out) {
+    if (working) return SolveOnWorking(s, working, working_guidance, options, h, out);
+    out->working_faces = s.num_faces();
+    if (options.seams) return SolveWithSeams(s, g, options, h, out);
+    return SolveOnMesh(s, g, options, h, nullptr, out);
+  };
+  if (!options.seams || !options.poles) return plain(solution);
+  const SurfaceModel& m = working ? *working : s;
+  const GuidanceField& mg = working ? working_guidance : g;
+  std::vector<LevelSetCap> caps = FindCaps(m, mg, h);
+  std::shared_ptr<const SurfaceModel> holed;
+  GuidanceField holed_guidance;
+  if (!caps.empty()) PQ_RETURN_IF_ERROR(CutCaps(m, mg, &caps, &holed, &holed_guidance));
+  if (!holed) return plain(solution);
+  // Both layouts, the poles' kept only if they align clearly better (kPoleGain) without more
+  // fold-overs: where the crown sits in weak guidance (the L-shaped roof, the hypar, the
+  // curvature field of a dome, which is umbilic all over) the fan only costs.
+  for (const LevelSetCap& c : caps)
+    LOG(INFO) << "levelset: a crown of the guidance at (" << c.centre.x() << ", " << c.centre.y()
+              << "): trying a pole, its cap " << c.radius << " m in radius left out of the solve";
+  LevelSetSolution with_poles;
+  PQ_RETURN_IF_ERROR(SolveOnWorking(s, holed, holed_guidance, options, h, &with_poles));
+  PQ_RETURN_IF_ERROR(plain(solution));
+  const LevelSetMetrics &a = with_poles.metrics, &b = solution->metrics;
+  const bool better = a.alignment_rms_deg_strong < kPoleGain * b.alignment_rms_deg_strong && a.foldovers <= b.foldovers;
+  LOG(INFO) << "levelset: with " << caps.size() << " pole(s) alignment " << a.alignment_rms_deg_strong << "° where weight > 0.5 ("
+            << a.foldovers << " fold-overs), without " << b.alignment_rms_deg_strong << "° (" << b.foldovers
+            << "): " << (better ? "poles kept" : "no poles");
+  if (!better) {
+    solution->rejected_poles = {{"crowns", caps.size()},
+                                {"alignment_with_poles", a.alignment_rms_deg_strong},
+                                {"foldovers_with_poles", a.foldovers}};
+    return Status::Ok();
+  }
+  *solution = std::move(with_poles);
+  solution->caps = std::move(caps);
   return Status::Ok();
 }
 }  // namespace pqlayout

@@ -18,6 +18,7 @@ using Vec3 = Eigen::Vector3d;
 
 constexpr double kMinMemberOfDepth = 1.1;  // members ≥ 1.1 × section depth
 constexpr double kJointOfDepth = 0.9;      // joints ≤ 0.9 × section depth
+constexpr int kMaxStiffenSides = 8;        // larger faces are held where planarize left them
 constexpr double kSlideOfTolerance = 0.25; // the tangential slide is at most this × the tolerance
 
 // Each vertex's frame (tangents and normal of the reference at the foot point of its
@@ -29,6 +30,11 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
   std::vector<bool> node_held(frame.model.nodes.size(), false);
   for (int v = 0; v < n; ++v)
     if (mesh.origin[v].on_boundary || mesh.origin[v].corner) node_held[frame.node_of[v]] = true;
+  // So is every vertex of a face with more than kMaxStiffenSides sides (a pole's cap): its
+  // C(k, 4) sub-quads would make a dense Gram matrix (a 35-gon: 52,360 rows on 105 columns).
+  for (const auto f : mesh.mesh.faces())
+    if (static_cast<int>(mesh.mesh.valence(f)) > kMaxStiffenSides)
+      for (const auto v : mesh.mesh.fv_range(f)) node_held[frame.node_of[v.idx()]] = true;
   P->frames.resize(n), P->lower.resize(n), P->upper.resize(n), P->held.assign(n, false), q->resize(n);
   const double t = o.tolerance * (1.0 - 1e-9);
   const double slide = std::min(o.slide, kSlideOfTolerance * o.tolerance);  // leaves the normal ≥ 0.93 t
@@ -74,6 +80,7 @@ void SetUpStiffenProblem(const ClosestPointQuery& query, const ExtractedMesh& me
     for (const auto v : m.fv_range(f)) ids.push_back(v.idx());
     P->faces.push_back(ids);
     const int k = static_cast<int>(ids.size());
+    if (k > kMaxStiffenSides) continue;  // held (SetUpVariables): no constraint can move
     for (int i = 0; i < k; ++i)
       for (int j = i + 1; j < k; ++j)
         for (int l = j + 1; l < k; ++l)

@@ -4,8 +4,10 @@
 // must keep its one-line cause and may not get worse than its bound (the value measured on
 // 2026-12-02 with a margin: 25 % for angles, CVs and areas, 0.05 for the quad fraction,
 // 1.5× + 1 for counts). A regression on any roof turns this red; a fix lets a miss be struck
-// from the list. wavy × curvature (9 misses, 45–70 s: closed level lines around three bump
-// tops, see corpus.md) is left to benchmarks/corpus.sh.
+// from the list. wavy × curvature (~60 s: three bump tops, each a pole since 2026-12-02, with
+// and without them solved; 2 misses, see corpus.md) is left to benchmarks/corpus.sh.
+// The domes with strain guidance must get their pole (problems/levelset_poles.cc): one
+// crown, one cap, alignment met (it was 10.8° and 14.8° without).
 // The Great Court at 112k reference triangles (surface.edge_length 0.5, issue 19) takes the
 // remeshed working-mesh path the 12k golden run does not: its strain layout once got a seam
 // round the Reading Room (18.6°, quad fraction 0.68) and must meet every target.
@@ -37,9 +39,9 @@ const CorpusCase kCases[] = {
     {"barrel", "curvature", {}},
     {"canopy", "strain", {{"quad_fraction", 0.72}, {"interior_non_quads", 3}}},
     {"canopy", "curvature", {}},
-    {"dome_circular", "strain", {{"alignment", 13.5}, {"spacing_cv", 0.334}, {"quad_fraction", 0.67}}},
+    {"dome_circular", "strain", {{"spacing_cv", 0.358}, {"interior_non_quads", 3}}},  // a pole since 2026-12-02
     {"dome_circular", "curvature", {{"quad_fraction", 0.74}}},
-    {"dome_square", "strain", {{"alignment", 18.5}, {"spacing_cv", 0.355}}},
+    {"dome_square", "strain", {{"spacing_cv", 0.418}, {"interior_non_quads", 6}}},  // a pole
     {"dome_square", "curvature", {}},
     {"hole_offcentre", "strain",
      {{"alignment", 17.8}, {"min_crossing", 7.7}, {"spacing_cv", 0.539}, {"interior_non_quads", 3}, {"edge_min_h", 0.094}}},
@@ -96,6 +98,11 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
     else EXPECT_LE(value, known->second) << name;
   }
   EXPECT_EQ(met, targets.at("met").get<int>());
+  const nlohmann::json& stages = report.at("stages");
+  const bool pole = c.source == "strain" && (c.roof == "dome_circular" || c.roof == "dome_square");
+  if (pole) EXPECT_EQ(stages.at("levelset").at("poles").size(), 1u);
+  if (pole) EXPECT_EQ(stages.at("extract").at("caps").size(), 1u);
+  if (c.roof == "great_court_112k") EXPECT_TRUE(stages.at("levelset").at("poles").empty());  // no crown
   if (c.roof == "great_court_112k") {  // solved on a working mesh, no seam round the ring for strain
     const nlohmann::json& levelset = report.at("stages").at("levelset");
     EXPECT_LT(levelset.at("working_mesh_triangles").get<int>(), report.at("stages").at("surface").at("n_faces").get<int>() / 4);

@@ -10,6 +10,7 @@
 #include "pipeline/config.h"
 #include "problems/levelset.h"
 #include "pipeline/pipeline.h"
+#include "tests/test_guidance.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -28,21 +29,7 @@ TriMesh Plane(double size, double edge) {
   return mesh;
 }
 
-GuidanceField UniformGuidance(const SurfaceModel& s, const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& d) {
-  GuidanceField g;
-  for (int f = 0; f < s.num_faces(); ++f) {
-    const auto ids = s.face_vertices(f);
-    const Eigen::Vector3d centre = (s.position(ids[0]) + s.position(ids[1]) + s.position(ids[2])) / 3.0;
-    const Eigen::Vector3d& n = s.face_normal(f);
-    const Eigen::Vector3d dir = d(centre);
-    g.direction.push_back((dir - n * n.dot(dir)).normalized());
-    g.weight.push_back(1.0);
-    g.magnitude.push_back(1.0);
-  }
-  g.major = g.minor = g.magnitude;
-  g.scale = 1.0;
-  return g;
-}
+using testing::UniformGuidance;
 
 TEST(LevelSets, FlatSquareWithConstantGuidanceGivesStraightEvenLines) {
   const SurfaceModel s(Plane(12.0, 0.6));
