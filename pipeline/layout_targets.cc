@@ -133,16 +133,31 @@ class Surroundings {
   std::vector<Eigen::Vector3d> corners_;
 };
 
-// "; the guidance turns a whole turn around (x, y) (index +1): …" or "".
-std::string WholeTurnNote(const Surroundings& around) {
+// "; the guidance turns a whole turn around (x, y) (index +1): …" or "", or with poles
+// (problems/levelset_poles.cc) what they cost.
+std::string WholeTurnNote(const Surroundings& around, const PipelineState& state) {
+  const auto& caps = state.levelsets.caps;
+  if (!caps.empty()) {
+    std::string where;
+    for (size_t k = 0; k < caps.size() && k < 3; ++k) where += (k ? ", " : "") + At(caps[k].centre);
+    return "; the layout has a pole at " + where +
+           " (the guidance turns a whole turn there): one family rings its cap, the other fans out of it in rays, "
+           "which are closer at the cap than further out";
+  }
   const auto turns = around.WholeTurns();
   if (turns.empty()) return "";
   std::string where;
   for (size_t k = 0; k < turns.size() && k < 3; ++k)
     where += (k ? ", " : "") + At(turns[k].position) + " (index " + Surroundings::Index(turns[k].index) + ")";
+  const nlohmann::json& tried = state.levelsets.rejected_poles;
+  const std::string poles =
+      tried.is_null() ? ""
+                      : "; poles there (levelset.poles) were tried and aligned only to " +
+                            Fixed(tried.at("alignment_with_poles").get<double>(), 1) + "°, not kept";
   return "; the guidance turns a whole turn around " + where +
          " (a crown or a bump top): level lines can only ring such a point or fan out of it, and a "
-         "single-valued conjugate family cannot cross rings everywhere, so alignment and even spacing give way";
+         "single-valued conjugate family cannot cross rings everywhere, so alignment and even spacing give way" +
+         poles;
 }
 
 int Worst(const std::vector<double>& value, bool largest, const std::vector<double>* only_if_nonnegative = nullptr) {
@@ -161,10 +176,10 @@ std::string LevelSetCause(const std::string& name, const PipelineState& state, c
     double strong = 0.0, off = 0.0;
     for (size_t f = 0; f < m.area.size(); ++f)
       if (m.misalignment[f] >= 0.0) strong += m.area[f], off += m.misalignment[f] > 16.0 ? m.area[f] : 0.0;
-    if (strong <= 0.0) return "no face has weight > 0.5" + WholeTurnNote(around);
+    if (strong <= 0.0) return "no face has weight > 0.5" + WholeTurnNote(around, state);
     const int w = Worst(m.misalignment, true);
     return Fixed(100.0 * off / strong, 0) + " % of the strongly guided area is more than 16° off, the worst (" +
-           Fixed(m.misalignment[w], 0) + "°) " + around.Describe(m.centroid[w]) + WholeTurnNote(around);
+           Fixed(m.misalignment[w], 0) + "°) " + around.Describe(m.centroid[w]) + WholeTurnNote(around, state);
   }
   if (name == "spacing_cv") {
     const bool phi = state.levelsets.metrics.spacing_cv_phi >= state.levelsets.metrics.spacing_cv_psi;
@@ -172,7 +187,7 @@ std::string LevelSetCause(const std::string& name, const PipelineState& state, c
     const int lo = Worst(spacing, false), hi = Worst(spacing, true);
     return std::string(phi ? "φ" : "ψ") + "'s lines are " + Fixed(spacing[lo] / h, 2) + " h apart " +
            around.Describe(m.centroid[lo]) + " and " + Fixed(std::min(spacing[hi] / h, 99.0), 2) + " h " +
-           around.Describe(m.centroid[hi]) + WholeTurnNote(around);
+           around.Describe(m.centroid[hi]) + WholeTurnNote(around, state);
   }
   // min_crossing, area_below_30, foldovers: the sharpest crossing.
   // Counts as the stage measured them (on the mesh it solved on); the place from the faces here.
@@ -180,7 +195,7 @@ std::string LevelSetCause(const std::string& name, const PipelineState& state, c
   const LevelSetMetrics& lm = state.levelsets.metrics;
   return std::to_string(lm.faces_below_min_angle) + " faces cross below " + Fixed(state.config.levelset.min_angle, 0) +
          "° (" + std::to_string(lm.foldovers) + " folded over), the sharpest " + around.Describe(m.centroid[w]) +
-         WholeTurnNote(around);
+         WholeTurnNote(around, state);
 }
 
 std::string ExtractCause(const std::string& name, const PipelineState& state, const Surroundings& around) {

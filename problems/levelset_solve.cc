@@ -223,10 +223,12 @@ nlohmann::json LevelSetSeams::ToJson() const {
 namespace {
 
 // φ, ψ solved on `working` (a remeshed or holed copy of the reference s), then interpolated
-// to the reference's vertices for the field files; extraction runs on `working`.
+// to the reference's vertices for the field files; extraction runs on `working`. holed: a
+// reference vertex inside a cap takes the values at its closest point on the cap's rim (not
+// those of the rim triangle's plane extrapolated to it).
 Status SolveOnWorking(const SurfaceModel& s, std::shared_ptr<const SurfaceModel> working,
                       const GuidanceField& working_guidance, const LevelsetOptions& options, double h,
-                      LevelSetSolution* solution) {
+                      LevelSetSolution* solution, bool holed = false) {
   LevelSetSolution coarse;
   // With seams the solution stays on the working mesh's cut surface (extraction runs there);
   // the per-vertex φ, ψ interpolated below (first copies) are for the field files only.
@@ -237,7 +239,7 @@ Status SolveOnWorking(const SurfaceModel& s, std::shared_ptr<const SurfaceModel>
   solution->psi.assign(s.num_vertices(), 0.0);
   for (int v = 0; v < s.num_vertices(); ++v) {
     const SurfacePoint p = query.OnSurface(s.position(v));
-    const Eigen::Vector3d w = TriangleBarycentric(*working, p.element, s.position(v));
+    const Eigen::Vector3d w = TriangleBarycentric(*working, p.element, holed ? p.point : s.position(v));
     const auto ids = working->face_vertices(p.element);
     for (int k = 0; k < 3; ++k) {
       solution->phi[v] += w[k] * coarse.phi[ids[k]];
@@ -309,7 +311,7 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
     LOG(INFO) << "levelset: a crown of the guidance at (" << c.centre.x() << ", " << c.centre.y()
               << "): trying a pole, its cap " << c.radius << " m in radius left out of the solve";
   LevelSetSolution with_poles;
-  PQ_RETURN_IF_ERROR(SolveOnWorking(s, holed, holed_guidance, options, h, &with_poles));
+  PQ_RETURN_IF_ERROR(SolveOnWorking(s, holed, holed_guidance, options, h, &with_poles, true));
   PQ_RETURN_IF_ERROR(plain(solution));
   const LevelSetMetrics &a = with_poles.metrics, &b = solution->metrics;
   const bool better = a.alignment_rms_deg_strong < kPoleGain * b.alignment_rms_deg_strong && a.foldovers <= b.foldovers;

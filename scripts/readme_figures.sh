@@ -32,3 +32,8 @@ bash scripts/check_report.sh out/readme_compare/report.html
 png out/readme_compare/figures/compliance_strain.svg 600 docs/figures/compliance_strain.png
 png out/readme_compare/figures/compliance_curvature.svg 600 docs/figures/compliance_curvature.png
 for g in strain curvature; do png out/readme_compare_stiffened/$g/figures/offset.svg 600 docs/figures/offset_$g.png; done
+# The circular dome of the corpus with strain guidance, without and with a pole (issue 17).
+build/cli/pqlayout run examples/corpus/dome_circular.yaml --out out/readme_dome_nopole --until planarize -q --set levelset.poles=false
+build/cli/pqlayout run examples/corpus/dome_circular.yaml --out out/readme_dome_pole --until planarize -q
+png out/readme_dome_nopole/figures/levelsets.svg 500 docs/figures/dome_without_pole.png
+png out/readme_dome_pole/figures/levelsets.svg 500 docs/figures/dome_with_pole.png

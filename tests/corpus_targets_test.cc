@@ -4,8 +4,8 @@
 // must keep its one-line cause and may not get worse than its bound (the value measured on
 // 2026-12-02 with a margin: 25 % for angles, CVs and areas, 0.05 for the quad fraction,
 // 1.5× + 1 for counts). A regression on any roof turns this red; a fix lets a miss be struck
-// from the list. wavy × curvature (~60 s: three bump tops, each a pole since 2026-12-02, with
-// and without them solved; 2 misses, see corpus.md) is left to benchmarks/corpus.sh.
+// from the list. wavy × curvature (~60 s: three bump tops, each a pole since 2026-12-02, the
+// level sets solved with and without them) was 9 misses and 23 fold-overs before, now 2.
 // The domes with strain guidance must get their pole (problems/levelset_poles.cc): one
 // crown, one cap, alignment met (it was 10.8° and 14.8° without).
 // The Great Court at 112k reference triangles (surface.edge_length 0.5, issue 19) takes the
@@ -59,6 +59,7 @@ const CorpusCase kCases[] = {
     {"wavy", "strain",
      {{"alignment", 20.8}, {"min_crossing", 14.1}, {"area_below_30", 0.354}, {"quad_fraction", 0.72},
       {"interior_non_quads", 4}}},
+    {"wavy", "curvature", {{"min_crossing", 17.4}, {"interior_non_quads", 6}}},  // three poles
     {"great_court_112k", "strain", {}, "great_court.yaml", {"surface.edge_length=0.5"}},
     {"great_court_112k", "curvature", {{"spacing_cv", 0.46}, {"interior_non_quads", 2}},
      "great_court.yaml", {"surface.edge_length=0.5"}},
@@ -101,6 +102,7 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   const nlohmann::json& stages = report.at("stages");
   const bool pole = c.source == "strain" && (c.roof == "dome_circular" || c.roof == "dome_square");
   if (pole) EXPECT_EQ(stages.at("levelset").at("poles").size(), 1u);
+  if (c.roof == "wavy" && c.source == "curvature") EXPECT_EQ(stages.at("levelset").at("poles").size(), 3u);
   if (pole) EXPECT_EQ(stages.at("extract").at("caps").size(), 1u);
   if (c.roof == "great_court_112k") EXPECT_TRUE(stages.at("levelset").at("poles").empty());  // no crown
   if (c.roof == "great_court_112k") {  // solved on a working mesh, no seam round the ring for strain
