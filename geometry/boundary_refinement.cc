@@ -25,7 +25,10 @@ double PointSegmentDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, 
 constexpr double kGoodAngle = 20.0 * M_PI / 180.0;  // pieces with every angle in [20°, 160°] first
 constexpr int kChordSamples = 8;                    // segments a chord is sampled in
 constexpr int kMaxPieces = 8;  // a chord is never cut into more pieces than this while sliding
-constexpr double kSlideMargin = 0.1;  // a slid vertex keeps this fraction of the span from either neighbour
+constexpr double kSlideMargin = 0.1;
+// A vertex moved onto a kink may make the faces at it up to this much worse than
+// min(20°, what they had): a hole's boundary makes reflex corners that a few degrees change.
+constexpr double kKinkAngleSlack = 3.0 * M_PI / 180.0;  // a slid vertex keeps this fraction of the span from either neighbour
 
 }  // namespace
 
@@ -39,8 +42,25 @@ ReferenceBoundary::ReferenceBoundary(const SurfaceModel& surface) : surface_(sur
       l.arc.push_back(l.arc.back() +
                       (surface.position(loop.vertices[(k + 1) % n]) - surface.position(loop.vertices[k])).norm());
     }
+    for (size_t k = 0; k < n; ++k) {
+      const Eigen::Vector3d before = surface.position(loop.vertices[k]) - surface.position(loop.vertices[(k + n - 1) % n]);
+      const Eigen::Vector3d after = surface.position(loop.vertices[(k + 1) % n]) - surface.position(loop.vertices[k]);
+      l.turn.push_back(std::atan2(before.cross(after).norm(), before.dot(after)));
+    }
     loops_.push_back(std::move(l));
   }
+}
+
+double ReferenceBoundary::NearestKink(int loop, double arc, double reach, double min_turn) const {
+  const Loop& l = loops_[loop];
+  const double length = l.arc.back();
+  double best = NAN;
+  for (size_t k = 0; k < l.vertices.size(); ++k) {
+    if (!(l.turn[k] > min_turn)) continue;
+    double offset = std::remainder(l.arc[k] - arc, length);  // in [-length/2, length/2]
+    if (std::abs(offset) <= reach && !(std::abs(offset) >= std::abs(best))) best = offset;
+  }
+  return best;
 }
 
 ReferenceBoundary::Location ReferenceBoundary::Locate(const Eigen::Vector3d& p) const {
@@ -90,23 +110,33 @@ QuadMeshVertex ReferenceBoundary::PointAt(int loop, double arc, Eigen::Vector3d*
   return origin;
 }
 
-double ReferenceBoundary::ChordDeviation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from,
-                                         double span) const {
+std::vector<std::pair<double, int>> ReferenceBoundary::VerticesInside(int loop, double from, double span) const {
   const Loop& l = loops_[loop];
   const size_t n = l.vertices.size();
-  // The span as a polyline: its ends and the loop vertices strictly inside it.
-  std::vector<Eigen::Vector3d> polyline;
   int k = 0;
   double t = 0.0;
-  polyline.push_back(Position(loop, from, &k, &t));
+  Position(loop, from, &k, &t);
   const double length = l.arc.back();
+  std::vector<std::pair<double, int>> inside;
   for (size_t step = 1; step <= n; ++step) {
     const size_t v = (k + step) % n;
     double ahead = l.arc[v] - std::fmod(from, length);
     if (ahead <= 0.0) ahead += length;
     if (ahead >= span) break;
-    polyline.push_back(surface_.position(l.vertices[v]));
+    inside.push_back({ahead, int(v)});
   }
+  return inside;
+}
+
+double ReferenceBoundary::ChordDeviation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from,
+                                         double span) const {
+  // The span as a polyline: its ends and the loop vertices strictly inside it.
+  std::vector<Eigen::Vector3d> polyline;
+  int k = 0;
+  double t = 0.0;
+  polyline.push_back(Position(loop, from, &k, &t));
+  for (const auto& [ahead, k] : VerticesInside(loop, from, span))
+    polyline.push_back(surface_.position(loops_[loop].vertices[k]));
   polyline.push_back(Position(loop, from + span, &k, &t));
   double deviation = 0.0;
   for (const auto& p : polyline) deviation = std::max(deviation, PointSegmentDistance(p, a, b));
@@ -117,6 +147,18 @@ double ReferenceBoundary::ChordDeviation(const Eigen::Vector3d& a, const Eigen::
     deviation = std::max(deviation, d);
   }
   return deviation;
+}
+
+double ReferenceBoundary::FarthestKink(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from,
+                                       double span, double min_turn) const {
+  double offset = -1.0, farthest = -1.0;
+  const Loop& l = loops_[loop];
+  for (const auto& [ahead, k] : VerticesInside(loop, from, span)) {
+    if (!(l.turn[k] > min_turn)) continue;
+    const double d = PointSegmentDistance(surface_.position(l.vertices[k]), a, b);
+    if (d > farthest) farthest = d, offset = ahead;
+  }
+  return offset;
 }
 
 namespace {
@@ -322,6 +364,70 @@ void BestSplit(const std::vector<int>& loop, int m, const std::vector<Eigen::Vec
   }
 }
 
+// Moves boundary vertex v by `move` (signed arc length) along reference loop `loop` from arc
+// `arc`, onto a kink, unless it is pinned or the move would give a face at it an angle more
+// than kKinkAngleSlack below min(20°, what it had) or an edge at it shorter than
+// min(min_edge, |move|, what it had): the alternative, a vertex inserted at the kink, would
+// make an edge |move| long. A moved vertex is pinned. Returns whether it moved.
+bool SlideToKink(const ReferenceBoundary& boundary, int loop, double arc, double move, int v, double min_edge,
+                 const std::vector<std::vector<int>>& faces, std::vector<Eigen::Vector3d>* position, std::vector<QuadMeshVertex>* origin,
+                 std::vector<bool>* pinned) {
+  if ((*pinned)[v]) return false;
+  std::vector<std::vector<int>> at_v;  // the faces at v (a linear scan: slides are few)
+  for (const auto& face : faces)
+    if (std::find(face.begin(), face.end(), v) != face.end()) at_v.push_back(face);
+  const VertexShape shape(at_v, *position);
+  const double angle_before = shape.SmallestAngle(v), edge_before = shape.ShortestEdge(v);
+  const Eigen::Vector3d old_position = (*position)[v];
+  Eigen::Vector3d p;
+  const QuadMeshVertex slid = boundary.PointAt(loop, arc + move, &p);
+  (*position)[v] = p;
+  if (shape.SmallestAngle(v) < std::min(angle_before, kGoodAngle) - kKinkAngleSlack ||
+      shape.ShortestEdge(v) < std::min({edge_before, min_edge, std::abs(move)})) {
+    (*position)[v] = old_position;
+    return false;
+  }
+  (*origin)[v] = slid;
+  (*pinned)[v] = true;
+  return true;
+}
+
+// A kink of the reference boundary that turns by θ with min_edge · sin(θ/2) > tolerance (5.7°
+// at the defaults) is followed within tolerance only by chords shorter than min_edge on one
+// side of it, unless a mesh vertex sits at it: the corpus's openings are polygons with 21°
+// kinks 0.2–0.4 h apart. Each boundary vertex (not a corner) within min_edge of such a kink
+// moves onto it, if the kink is less than halfway to either boundary neighbour and SlideToKink
+// accepts the shape. Returns the number of vertices moved.
+int SnapToSharpKinks(const ReferenceBoundary& boundary, double min_turn, double min_edge,
+                     const std::vector<std::vector<int>>& faces, const std::map<std::pair<int, int>, int>& face_of,
+                     std::vector<Eigen::Vector3d>* position, std::vector<QuadMeshVertex>* origin,
+                     std::vector<bool>* pinned) {
+  int moved = 0;
+  for (const auto& loop : MeshBoundaryLoops(face_of, *origin)) {
+    const size_t n = loop.size();
+    if (n < 3) continue;
+    for (size_t i = 0; i < n; ++i) {
+      const int v = loop[i];
+      if ((*pinned)[v]) continue;
+      const auto at = boundary.Locate((*position)[v]);
+      const double kink = boundary.NearestKink(at.loop, at.arc, min_edge, min_turn);
+      if (std::isnan(kink)) continue;
+      if (std::abs(kink) < 1e-9 * min_edge) {  // already there: stays
+        (*pinned)[v] = true;
+        continue;
+      }
+      bool room = true;
+      for (const int w : {loop[(i + 1) % n], loop[(i + n - 1) % n]}) {
+        const auto there = boundary.Locate((*position)[w]);
+        const double offset = std::remainder(there.arc - at.arc, boundary.length(at.loop));
+        if (there.loop != at.loop || (offset * kink > 0.0 && std::abs(kink) >= 0.5 * std::abs(offset))) room = false;
+      }
+      if (room && SlideToKink(boundary, at.loop, at.arc, kink, v, min_edge, faces, position, origin, pinned)) ++moved;
+    }
+  }
+  return moved;
+}
+
 // The polygon mesh of `faces` on `position`; a face OpenMesh refuses is counted in *rejected.
 PolyMesh BuildPolyMesh(const std::vector<Eigen::Vector3d>& position, const std::vector<std::vector<int>>& faces,
                        int* rejected) {
@@ -373,6 +479,11 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
   };
 
   // 2. Split the chords that are still too far from the boundary.
+  std::vector<bool> pinned(position.size());  // inserted or slid to a kink: never moved again
+  for (size_t v = 0; v < position.size(); ++v) pinned[v] = origin[v].corner;
+  // Sharp kinks: those that turn by more than min_turn (SnapToSharpKinks).
+  const double min_turn = min_edge > tolerance ? 2.0 * std::asin(tolerance / min_edge) : INFINITY;
+  int slid_to_kinks = SnapToSharpKinks(boundary, min_turn, min_edge, faces, face_of, &position, &origin, &pinned);
   int inserted = 0;
   const int max_insertions = 4 * static_cast<int>(position.size()) + 16;  // a guard, never reached in practice
   while (!queue.empty() && inserted < max_insertions) {
@@ -387,10 +498,28 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     const double from = span.from;
     if (boundary.ChordDeviation(position[a], position[b], la.loop, from, span.span) <= tolerance) continue;
 
-    // The new boundary vertex m halfway along the boundary between a and b.
+    // The new boundary vertex m: at the sharp kink (SnapToSharpKinks) of the reference boundary
+    // farthest from the chord if the span holds one, else halfway.
+    // A kink closer than min_edge to an end that may move takes that end instead.
+    const double kink = boundary.FarthestKink(position[a], position[b], la.loop, from, span.span, min_turn);
+    if (kink >= 0.0 && std::min(kink, span.span - kink) < min_edge) {
+      const bool near_start = kink < span.span - kink;
+      const int end = near_start == span.a_first ? a : b;
+      const double start = near_start ? from : from + span.span;
+      if (SlideToKink(boundary, la.loop, start, from + kink - start, end, min_edge, faces, &position, &origin,
+                      &pinned)) {
+        located[end] = boundary.Locate(position[end]);
+        for (const auto& [halfedge, g] : face_of)
+          if ((halfedge.first == end || halfedge.second == end) && !face_of.count({halfedge.second, halfedge.first}))
+            queue.push_back(halfedge);
+        ++slid_to_kinks;
+        continue;
+      }
+    }
     const int m = static_cast<int>(position.size());
     Eigen::Vector3d p;
-    origin.push_back(boundary.PointAt(la.loop, from + 0.5 * span.span, &p));
+    origin.push_back(boundary.PointAt(la.loop, from + (kink >= 0.0 ? kink : 0.5 * span.span), &p));
+    pinned.push_back(true);
     position.push_back(p);
     // The face as [b, v1, ..., vr, a] (its edge a → b closes the loop), then cut by m – v_j
     // into [m, b, v1, ..., vj] and [vj, ..., vr, a, m].
@@ -407,8 +536,8 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     queue.push_back({m, b});
     ++inserted;
   }
-  out->stats.slid_boundary_vertices += slid;
-  if (inserted == 0 && slid == 0) return 0;
+  out->stats.slid_boundary_vertices += slid + slid_to_kinks;
+  if (inserted == 0 && slid + slid_to_kinks == 0) return 0;
 
   mesh = BuildPolyMesh(position, faces, &out->stats.rejected_faces);
   out->stats.refined_boundary_edges += inserted;

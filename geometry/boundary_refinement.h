@@ -9,6 +9,7 @@
 // of its vertices on it would have to be horizontal to be planar.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,13 +45,24 @@ class ReferenceBoundary {
   // the span to the segment).
   double ChordDeviation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from,
                         double span) const;
+  // Of the loop vertices strictly inside the same span where the boundary turns by more than
+  // `min_turn` radians (kinks), the one farthest from the segment a–b: its arc length from
+  // `from`, or -1 if the span holds none.
+  double FarthestKink(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from, double span,
+                      double min_turn) const;
+  // The signed arc length from `arc` to the nearest vertex of `loop` within `reach` either way at
+  // which the boundary turns by more than `min_turn` radians; NaN if there is none.
+  double NearestKink(int loop, double arc, double reach, double min_turn) const;
 
  private:
   struct Loop {
     std::vector<int> vertices;  // reference vertex ids
     std::vector<double> arc;    // arc length at each vertex, and the total at the end (size n + 1)
+    std::vector<double> turn;   // angle between the segments before and after each vertex, radians
   };
   Eigen::Vector3d Position(int loop, double arc, int* segment, double* t) const;
+  // The loop's vertices strictly inside the span: (arc length from `from`, index in the loop).
+  std::vector<std::pair<double, int>> VerticesInside(int loop, double from, double span) const;
 
   const SurfaceModel& surface_;
   std::vector<Loop> loops_;
