@@ -150,11 +150,11 @@ double ReferenceBoundary::ChordDeviation(const Eigen::Vector3d& a, const Eigen::
 }
 
 double ReferenceBoundary::FarthestKink(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from,
-                                       double span, double min_turn) const {
+                                       double span, double min_turn, double margin) const {
   double offset = -1.0, farthest = -1.0;
   const Loop& l = loops_[loop];
   for (const auto& [ahead, k] : VerticesInside(loop, from, span)) {
-    if (!(l.turn[k] > min_turn)) continue;
+    if (!(l.turn[k] > min_turn) || ahead <= margin || ahead >= span - margin) continue;
     const double d = PointSegmentDistance(surface_.position(l.vertices[k]), a, b);
     if (d > farthest) farthest = d, offset = ahead;
   }
@@ -501,7 +501,8 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     // The new boundary vertex m: at the sharp kink (SnapToSharpKinks) of the reference boundary
     // farthest from the chord if the span holds one, else halfway.
     // A kink closer than min_edge to an end that may move takes that end instead.
-    const double kink = boundary.FarthestKink(position[a], position[b], la.loop, from, span.span, min_turn);
+    // A kink within `tolerance` of an end adds at most `tolerance` to the chord's deviation.
+    const double kink = boundary.FarthestKink(position[a], position[b], la.loop, from, span.span, min_turn, tolerance);
     if (kink >= 0.0 && std::min(kink, span.span - kink) < min_edge) {
       const bool near_start = kink < span.span - kink;
       const int end = near_start == span.a_first ? a : b;

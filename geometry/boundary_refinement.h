@@ -45,11 +45,12 @@ class ReferenceBoundary {
   // the span to the segment).
   double ChordDeviation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from,
                         double span) const;
-  // Of the loop vertices strictly inside the same span where the boundary turns by more than
-  // `min_turn` radians (kinks), the one farthest from the segment a–b: its arc length from
-  // `from`, or -1 if the span holds none.
+  // Of the loop vertices more than `margin` inside the same span where the boundary turns by
+  // more than `min_turn` radians (kinks), the one farthest from the segment a–b: its arc length
+  // from `from`, or -1 if the span holds none. A kink within `margin` of an end counts as that
+  // end (a vertex put there would make an edge shorter than `margin`).
   double FarthestKink(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from, double span,
-                      double min_turn) const;
+                      double min_turn, double margin) const;
   // The signed arc length from `arc` to the nearest vertex of `loop` within `reach` either way at
   // which the boundary turns by more than `min_turn` radians; NaN if there is none.
   double NearestKink(int loop, double arc, double reach, double min_turn) const;

@@ -394,6 +394,92 @@ TEST(BoundaryRefinement, StraightBoundaryOrZeroToleranceChangesNothing) {
   EXPECT_EQ(static_cast<int>(disk_out.mesh.n_faces()), disk_before.n_faces);
 }
 
+// A flat regular n-gon of circumradius r as a triangle mesh: a centre vertex and `rings`
+// concentric copies of the polygon, each side cut into `cuts` pieces. Its boundary turns by
+// 360°/n at each corner and not at all in between.
+TriMesh PolygonDisk(int n, double r, int rings, int cuts) {
+  PolygonSoup soup;
+  soup.points.emplace_back(0.0, 0.0, 0.0);
+  const int per_ring = n * cuts;
+  for (int k = 1; k <= rings; ++k)
+    for (int j = 0; j < per_ring; ++j) {
+      const double a0 = 2.0 * M_PI * (j / cuts) / n, a1 = 2.0 * M_PI * (j / cuts + 1) / n;
+      const double t = double(j % cuts) / cuts, scale = r * k / rings;
+      soup.points.emplace_back(scale * ((1 - t) * std::cos(a0) + t * std::cos(a1)),
+                               scale * ((1 - t) * std::sin(a0) + t * std::sin(a1)), 0.0);
+    }
+  const auto id = [&](int k, int j) { return k == 0 ? 0 : 1 + (k - 1) * per_ring + (j % per_ring); };
+  for (int j = 0; j < per_ring; ++j) soup.faces.push_back({0, id(1, j), id(1, j + 1)});
+  for (int k = 1; k < rings; ++k)
+    for (int j = 0; j < per_ring; ++j) {
+      soup.faces.push_back({id(k, j), id(k + 1, j), id(k + 1, j + 1)});
+      soup.faces.push_back({id(k, j), id(k + 1, j + 1), id(k, j + 1)});
+    }
+  return ToMesh(soup);
+}
+
+// A span that starts a hair before a kink (a chord end located at the kink up to rounding)
+// has that kink at offset ~0: FarthestKink must count it as the end and give the next kink.
+TEST(BoundaryRefinement, FarthestKinkSkipsKinksAtTheSpansEnds) {
+  const SurfaceModel s(PolygonDisk(24, 10.0, 4, 3));
+  const ReferenceBoundary boundary(s);
+  const double side = 2.0 * 10.0 * std::sin(M_PI / 24), min_turn = 5.0 * M_PI / 180.0, margin = 0.02;
+  const Eigen::Vector3d corner(10.0, 0.0, 0.0);
+  const auto at = boundary.Locate(corner);
+  ASSERT_LE(at.distance, 1e-12);
+  Eigen::Vector3d a, b;
+  for (const double before : {0.0, 1e-13, 1e-6}) {
+    const double from = at.arc - before;
+    for (const double span : {before + 1.5 * side, before + 0.5 * side}) {
+      boundary.PointAt(at.loop, from, &a);
+      boundary.PointAt(at.loop, from + span, &b);
+      const double kink = boundary.FarthestKink(a, b, at.loop, from, span, min_turn, margin);
+      // The next corner if the span reaches it, else none.
+      EXPECT_NEAR(kink, span > side ? before + side : -1.0, 1e-9) << before << " m before the corner, span " << span;
+      // Without the margin, the corner itself would be the split point of the shorter span.
+      if (before > 0.0 && span < side)
+        EXPECT_NEAR(boundary.FarthestKink(a, b, at.loop, from, span, min_turn, 0.0), before, 1e-9);
+    }
+  }
+  // A span that ends a hair past a kink, and nothing else: no kink.
+  boundary.PointAt(at.loop, at.arc, &a);
+  boundary.PointAt(at.loop, at.arc + side + 1e-9, &b);
+  EXPECT_EQ(boundary.FarthestKink(a, b, at.loop, at.arc, side + 1e-9, min_turn, margin), -1.0);
+}
+
+// A polygonal boundary with sharp kinks (24-gon: 15°, sides 1.3 h): boundary vertices snap
+// onto kinks and chords split at kinks. A kink at a chord's very end must count as that end:
+// taken as a split point it gave zero-length edges, again and again (hole_offcentre × curvature
+// inserted 1,312 vertices before the guard). Refined, every chord is within tolerance, no
+// edge is shorter than the polygon's own sides allow, and at most one vertex per kink and
+// per chord is inserted.
+TEST(BoundaryRefinement, SharpKinksAtChordEndsInsertNoShortEdges) {
+  const SurfaceModel s(PolygonDisk(24, 10.0, 8, 3));
+  const double h = 2.0, tolerance = 0.01 * h;
+  for (const double angle : {0.0, 0.3, 1.0}) {
+    std::vector<double> phi, psi;
+    RotatedCoordinates(s, angle, h, 0.37, &phi, &psi);
+    auto [out, before] = ExtractValid(s, phi, psi, 0.2 * h);
+    ASSERT_GT(before.boundary_deviation_edges, 3.0 * tolerance);
+    const int inserted = RefineBoundaryChords(s, tolerance, 0.25 * h, 0.2 * h, &out);
+    const ExtractedMeshMetrics after = MeasureExtractedMesh(s, out, 30.0);
+    std::cout << "24-gon, angle " << angle << ": deviation " << before.boundary_deviation_edges << " → "
+              << after.boundary_deviation_edges << " m, " << inserted << " inserted, "
+              << out.stats.slid_boundary_vertices << " slid, min edge " << before.edge_min / h << " → "
+              << after.edge_min / h << " h, quad fraction " << before.quad_fraction << " → " << after.quad_fraction
+              << "\n";
+    EXPECT_LE(after.boundary_deviation_edges, tolerance);
+    EXPECT_LE(inserted, 24);
+    EXPECT_EQ(after.n_faces, before.n_faces + inserted);
+    EXPECT_GE(after.face_sides.at(4), before.face_sides.at(4));
+    EXPECT_GE(after.edge_min, std::min(before.edge_min, 0.1 * h));
+    EXPECT_EQ(after.euler_characteristic, 1);
+    EXPECT_EQ(after.boundary_loops, 1);
+    ExpectSimpleCounterClockwiseManifold(out.mesh);
+    ExpectOriginsReproducePositions(s, out);
+  }
+}
+
 }  // namespace
 }  // namespace pqlayout
 
