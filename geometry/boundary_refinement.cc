@@ -63,6 +63,17 @@ double ReferenceBoundary::NearestKink(int loop, double arc, double reach, double
   return best;
 }
 
+double ReferenceBoundary::TurnAt(const Eigen::Vector3d& p, double within) const {
+  for (const Loop& l : loops_)
+    for (size_t k = 0; k < l.vertices.size(); ++k)
+      if ((surface_.position(l.vertices[k]) - p).norm() <= within) return l.turn[k];
+  return 0.0;
+}
+
+double SharpKinkTurn(double tolerance, double min_edge) {
+  return min_edge > tolerance ? 2.0 * std::asin(tolerance / min_edge) : INFINITY;
+}
+
 ReferenceBoundary::Location ReferenceBoundary::Locate(const Eigen::Vector3d& p) const {
   Location best;
   best.distance = INFINITY;
@@ -482,7 +493,7 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
   std::vector<bool> pinned(position.size());  // inserted or slid to a kink: never moved again
   for (size_t v = 0; v < position.size(); ++v) pinned[v] = origin[v].corner;
   // Sharp kinks: those that turn by more than min_turn (SnapToSharpKinks).
-  const double min_turn = min_edge > tolerance ? 2.0 * std::asin(tolerance / min_edge) : INFINITY;
+  const double min_turn = SharpKinkTurn(tolerance, min_edge);
   int slid_to_kinks = SnapToSharpKinks(boundary, min_turn, min_edge, faces, face_of, &position, &origin, &pinned);
   int inserted = 0;
   const int max_insertions = 4 * static_cast<int>(position.size()) + 16;  // a guard, never reached in practice

@@ -51,6 +51,9 @@ class ReferenceBoundary {
   // end (a vertex put there would make an edge shorter than `margin`).
   double FarthestKink(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int loop, double from, double span,
                       double min_turn, double margin) const;
+  // The angle (radians) by which the boundary turns at the loop vertex within `within` of p,
+  // 0 if no loop vertex is that close.
+  double TurnAt(const Eigen::Vector3d& p, double within) const;
   // The signed arc length from `arc` to the nearest vertex of `loop` within `reach` either way at
   // which the boundary turns by more than `min_turn` radians; NaN if there is none.
   double NearestKink(int loop, double arc, double reach, double min_turn) const;
@@ -68,6 +71,11 @@ class ReferenceBoundary {
   const SurfaceModel& surface_;
   std::vector<Loop> loops_;
 };
+
+// The turning angle above which a kink of the reference boundary is sharp: a chord that cuts it
+// at min_edge from the kink stands more than `tolerance` off (min_edge · sin(θ/2) > tolerance;
+// 5.7° at the defaults). Infinite if min_edge ≤ tolerance.
+double SharpKinkTurn(double tolerance, double min_edge);
 
 // Keeps the mesh boundary within `tolerance` (metres) of the reference boundary, in two steps:
 // 1. slides boundary vertices (not corners) along the boundary, at most max_slide (metres of

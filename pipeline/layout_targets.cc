@@ -133,6 +133,26 @@ class Surroundings {
   std::vector<Eigen::Vector3d> corners_;
 };
 
+// Why a short edge at a polygonal boundary could not be avoided, if an end sits on a sharp kink
+// of the reference boundary (SharpKinkTurn: the chord refinement puts a vertex there, or moves
+// one onto it): both ends → the reference's own segment is that short; one end → the other, a
+// level line's end, could not move onto the kink without shearing its panel. "" otherwise.
+std::string KinkNote(const PipelineState& state, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const double h = state.config.layout.spacing;
+  const double sharp = SharpKinkTurn(state.config.extract.boundary_tolerance * h, state.config.extract.min_edge * h);
+  const ReferenceBoundary boundary(*state.surface);
+  const double at_a = boundary.TurnAt(a, 1e-6 * h), at_b = boundary.TurnAt(b, 1e-6 * h);
+  const auto degrees = [](double t) { return Fixed(t * 180.0 / M_PI, 0) + "°"; };
+  if (at_a > sharp && at_b > sharp)
+    return "both ends sit on kinks of the reference boundary (it turns by " + degrees(at_a) + " and " + degrees(at_b) +
+           "), which panels must follow within extract.boundary_tolerance: the reference's own segment is this short";
+  if (at_a > sharp || at_b > sharp)
+    return "one end sits on a kink of the reference boundary (it turns by " + degrees(std::max(at_a, at_b)) +
+           "), which panels must follow within extract.boundary_tolerance; the other end, where a level line meets "
+           "the boundary, could not move onto the kink without a panel angle more than 3° below min(20°, its own)";
+  return "";
+}
+
 // "; the guidance turns a whole turn around (x, y) (index +1): …" or "", or with poles
 // (problems/levelset_poles.cc) what they cost.
 std::string WholeTurnNote(const Surroundings& around, const PipelineState& state) {
@@ -254,7 +274,12 @@ std::string ExtractCause(const std::string& name, const PipelineState& state, co
     std::string why = blocker ? std::string("not collapsed because ") + blocker
                               : "made after the short-edge collapses, by the boundary clean-up or the chord refinement";
     const ReferenceBoundary::Location at = around.Locate(where);
-    if (!blocker && at.distance < 0.5 * h) {
+    const std::string kinks = u >= 0 && !blocker ? KinkNote(state, ToEigen(mesh.point(OpenMesh::VertexHandle(u))),
+                                                            ToEigen(mesh.point(OpenMesh::VertexHandle(v))))
+                                                 : "";
+    if (!kinks.empty()) {
+      why = kinks;
+    } else if (!blocker && at.distance < 0.5 * h) {
       // A boundary loop of length ℓ curves with radius ~ℓ/2π if round; a chord of length L stands
       // L²/8R off it, so chords stay within the tolerance t only if L ≤ √(8 R t).
       const double radius = state.surface->boundary_loops()[at.loop].length / (2.0 * M_PI);
