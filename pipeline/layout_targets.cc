@@ -172,8 +172,11 @@ std::string WholeTurnNote(const Surroundings& around, const PipelineState& state
   const nlohmann::json& tried = state.levelsets.rejected_poles;
   const std::string poles =
       tried.is_null() ? ""
-                      : "; poles there (levelset.poles) were tried and aligned only to " +
-                            Fixed(tried.at("alignment_with_poles").get<double>(), 1) + "°, not kept";
+      : tried.value("tried", true)
+          ? "; poles there (levelset.poles) were tried and aligned only to " +
+                Fixed(tried.at("alignment_with_poles").get<double>(), 1) + "°, not kept"
+          : "; no pole was tried there: the layout aligns to " + Fixed(tried.at("alignment_without").get<double>(), 1) +
+                "° without";
   return "; the guidance turns a whole turn around " + where +
          " (a crown or a bump top): level lines can only ring such a point or fan out of it, and a "
          "single-valued conjugate family cannot cross rings everywhere, so alignment and even spacing give way" +

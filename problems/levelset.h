@@ -86,7 +86,10 @@ struct LevelSetSolution {
   std::shared_ptr<const SurfaceModel> working;
   std::vector<double> phi_working, psi_working;
   std::vector<LevelSetCap> caps;  // poles (levelset.poles); the working mesh then has a hole at each
-  nlohmann::json rejected_poles;  // crowns tried as poles and not kept (null: none tried, or kept)
+  // Crowns found and no pole kept (null: no crown, or kept): {crowns, tried: false,
+  // alignment_without} if the layout without met the alignment target, else {crowns, tried:
+  // true, alignment_with_poles, foldovers_with_poles}.
+  nlohmann::json rejected_poles;
 };
 
 Status SolveLevelSets(const SurfaceModel& surface, const GuidanceField& guidance, const LevelsetOptions& options,

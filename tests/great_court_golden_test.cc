@@ -58,6 +58,13 @@ TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
   // The strain field's singularities lie in the weak bands along the edges: no seam is worth
   // cutting, φ and ψ stay single-valued.
   EXPECT_EQ(s["levelset"]["seams"]["count"].get<int>(), 0);
+  // Its two crowns (cancelled +½ pairs in the weak bands) get no pole: the layout without meets
+  // the alignment target, so the pole layout is not solved (it aligned to 6.0°, at twice the
+  // stage's time).
+  EXPECT_TRUE(s["levelset"]["poles"].empty());
+  ASSERT_TRUE(s["levelset"].contains("poles_not_kept"));
+  EXPECT_EQ(s["levelset"]["poles_not_kept"]["tried"].get<bool>(), false);
+  EXPECT_EQ(s["levelset"]["poles_not_kept"]["crowns"].get<int>(), 2);
   // Two boundary 9-gons are cut into quads and a triangle (SplitLargePolygons).
   EXPECT_GE(s["extract"]["split_boundary_polygons"].get<int>(), 2);
   EXPECT_TRUE(s["extract"]["interior_non_quads"].empty()) << s["extract"]["interior_non_quads"];

@@ -15,6 +15,7 @@
 #include "problems/guidance.h"
 #include "problems/levelset.h"
 #include "problems/membrane.h"
+#include "tests/extraction_test_helpers.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -23,65 +24,7 @@ namespace {
 using testing::FlatGridSoup;
 using testing::GeneratedMesh;
 using testing::ToMesh;
-
-// A flat grid of m × m squares of side `cell`, each split into two triangles.
-TriMesh ScaledGrid(int m, double cell) {
-  PolygonSoup soup = FlatGridSoup(m);
-  for (auto& p : soup.points) p *= cell;
-  return ToMesh(soup);
-}
-
-// φ, ψ = the coordinates rotated by `angle`, over h, plus offsets.
-void RotatedCoordinates(const SurfaceModel& s, double angle, double h, double offset, std::vector<double>* phi,
-                        std::vector<double>* psi) {
-  phi->clear();
-  psi->clear();
-  for (int v = 0; v < s.num_vertices(); ++v) {
-    const Eigen::Vector3d p = s.position(v);
-    phi->push_back((std::cos(angle) * p.x() + std::sin(angle) * p.y()) / h + offset);
-    psi->push_back((-std::sin(angle) * p.x() + std::cos(angle) * p.y()) / h + offset);
-  }
-}
-
-Eigen::Vector3d OriginPosition(const SurfaceModel& s, const QuadMeshVertex& o) {
-  const auto ids = s.face_vertices(o.face);
-  return o.barycentric[0] * s.position(ids[0]) + o.barycentric[1] * s.position(ids[1]) +
-         o.barycentric[2] * s.position(ids[2]);
-}
-
-void ExpectOriginsReproducePositions(const SurfaceModel& s, const ExtractedMesh& out) {
-  ASSERT_EQ(out.origin.size(), out.mesh.n_vertices());
-  for (const auto v : out.mesh.vertices()) {
-    const QuadMeshVertex& o = out.origin[v.idx()];
-    ASSERT_GE(o.face, 0);
-    EXPECT_NEAR(o.barycentric.sum(), 1.0, 1e-12);
-    EXPECT_GE(o.barycentric.minCoeff(), -1e-12);
-    EXPECT_LE((OriginPosition(s, o) - ToEigen(out.mesh.point(v))).norm(), 1e-9) << "vertex " << v.idx();
-  }
-}
-
-// Every face a simple polygon in the xy-plane (flat tests), counter-clockwise like the
-// reference, every vertex manifold.
-void ExpectSimpleCounterClockwiseManifold(const PolyMesh& mesh) {
-  for (const auto f : mesh.faces()) {
-    std::vector<Eigen::Vector2d> p;
-    for (const auto v : mesh.fv_range(f)) p.push_back(ToEigen(mesh.point(v)).head<2>());
-    const size_t n = p.size();
-    double area = 0.0;
-    for (size_t k = 0; k < n; ++k) area += p[k].x() * p[(k + 1) % n].y() - p[(k + 1) % n].x() * p[k].y();
-    EXPECT_GT(area, 0.0) << "face " << f.idx();
-    const auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
-    for (size_t a = 0; a < n; ++a)
-      for (size_t b = a + 2; b < n; ++b) {
-        if (a == 0 && b == n - 1) continue;  // adjacent through the wrap
-        const Eigen::Vector2d p1 = p[a], p2 = p[(a + 1) % n], q1 = p[b], q2 = p[(b + 1) % n];
-        const bool separated = cross(p2 - p1, q1 - p1) * cross(p2 - p1, q2 - p1) > 0 ||
-                               cross(q2 - q1, p1 - q1) * cross(q2 - q1, p2 - q1) > 0;
-        EXPECT_TRUE(separated) << "face " << f.idx() << " crosses itself";
-      }
-  }
-  for (const auto v : mesh.vertices()) EXPECT_TRUE(mesh.is_manifold(v)) << "vertex " << v.idx();
-}
+using namespace extraction_test;
 
 // The square [0, n h]² with φ = x / h, ψ = y / h must give exactly the n × n grid.
 void ExpectExactGrid(int cells, double cell, double h) {
@@ -126,25 +69,6 @@ TEST(QuadExtraction, FlatSquareLevelLinesThroughVerticesAndAlongEdges) {
 TEST(QuadExtraction, FlatSquareLevelLinesBetweenVertices) {
   ExpectExactGrid(7, 6.0 / 7.0, 2.0);   // inner lines strictly between vertices, crossings on diagonals
   ExpectExactGrid(5, 0.9, 1.5);         // lines at 1.5, 3.0: between vertices, crossings inside triangles
-}
-
-struct ExtractionMetricsAndMesh {
-  ExtractedMesh out;
-  ExtractedMeshMetrics m;
-};
-
-// Extracts and checks what every extraction must give: no refused faces, no cells with holes,
-// simple counter-clockwise faces on a manifold, origins that reproduce the positions.
-ExtractionMetricsAndMesh ExtractValid(const SurfaceModel& s, const std::vector<double>& phi,
-                                      const std::vector<double>& psi, double min_edge) {
-  ExtractionMetricsAndMesh r;
-  EXPECT_TRUE(ExtractQuadMesh(s, phi, psi, 30.0, min_edge, &r.out).ok());
-  EXPECT_EQ(r.out.stats.rejected_faces, 0);
-  EXPECT_EQ(r.out.stats.regions_with_holes, 0);
-  ExpectSimpleCounterClockwiseManifold(r.out.mesh);
-  ExpectOriginsReproducePositions(s, r.out);
-  r.m = MeasureExtractedMesh(s, r.out, 30.0);
-  return r;
 }
 
 TEST(QuadExtraction, RotatedGridOnDiskIsAManifoldDisk) {
@@ -324,167 +248,13 @@ TEST(QuadExtraction, GreatCourtEndToEnd) {
   ExpectOriginsReproducePositions(s, out);
 }
 
-// Faces with three consecutive vertices on the boundary (a panel with three points on the
-// Reading Room ring, a horizontal circle, could only be planar lying flat).
-int FacesWithThreeBoundaryVerticesInARow(const ExtractedMesh& out) {
-  int count = 0;
-  for (const auto f : out.mesh.faces()) {
-    std::vector<bool> on;
-    for (const auto v : out.mesh.fv_range(f)) on.push_back(out.origin[v.idx()].on_boundary);
-    const size_t n = on.size();
-    bool found = false;
-    for (size_t k = 0; k < n; ++k) found |= on[k] && on[(k + 1) % n] && on[(k + 2) % n];
-    count += found;
-  }
-  return count;
-}
-
-// A rotated grid on a disk of radius 10 with h = 2: boundary chords of up to ~2.8 m stand
-// up to ~0.1 m off the circle. Refined to 0.01 h, the mesh must stay a simple manifold disk
-// on the reference, gain exactly one face per inserted vertex, lose no quad, and never add a
-// face with three boundary vertices in a row.
-TEST(BoundaryRefinement, DiskChordsWithinToleranceAndStillAManifoldDisk) {
-  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
-  const double h = 2.0, tolerance = 0.01 * h;
-  for (const double angle : {0.3, 1.0}) {
-    std::vector<double> phi, psi;
-    RotatedCoordinates(s, angle, h, 0.37, &phi, &psi);
-    auto [out, before] = ExtractValid(s, phi, psi, 0.2 * h);
-    ASSERT_GT(before.boundary_deviation_edges, 3.0 * tolerance);
-    const int three_in_a_row = FacesWithThreeBoundaryVerticesInARow(out);
-    const int inserted = RefineBoundaryChords(s, tolerance, 0.25 * h, 0.2 * h, &out);
-    ExtractedMeshMetrics after = MeasureExtractedMesh(s, out, 30.0);
-    std::cout << "disk, angle " << angle << ": deviation " << before.boundary_deviation_edges << " → "
-              << after.boundary_deviation_edges << " m, " << inserted << " inserted, "
-              << out.stats.slid_boundary_vertices << " slid, quad fraction " << before.quad_fraction << " → "
-              << after.quad_fraction << "; faces with three boundary vertices in a row " << three_in_a_row << " → "
-              << FacesWithThreeBoundaryVerticesInARow(out) << "\n";
-    EXPECT_GT(inserted, 0);
-    EXPECT_LE(after.boundary_deviation_edges, tolerance);
-    EXPECT_EQ(after.n_faces, before.n_faces + inserted);
-    EXPECT_GE(after.face_sides[4], before.face_sides[4]);
-    EXPECT_EQ(after.euler_characteristic, 1);
-    EXPECT_EQ(after.boundary_loops, 1);
-    EXPECT_GE(after.edge_min, std::min(before.edge_min, 0.2 * h) - 1e-12);
-    EXPECT_EQ(after.planarity_max, 0.0);
-    EXPECT_LE(FacesWithThreeBoundaryVerticesInARow(out), three_in_a_row);  // none added
-    ExpectSimpleCounterClockwiseManifold(out.mesh);
-    ExpectOriginsReproducePositions(s, out);
-    for (const auto v : out.mesh.vertices())
-      if (out.mesh.is_boundary(v)) EXPECT_LE(ReferenceBoundary(s).Distance(ToEigen(out.mesh.point(v))), 1e-9);
-  }
-}
-
-// Only a curved boundary is refined: on a square nothing moves and nothing is inserted, and
-// tolerance 0 leaves a disk's mesh alone.
-TEST(BoundaryRefinement, StraightBoundaryOrZeroToleranceChangesNothing) {
-  const SurfaceModel square(ScaledGrid(24, 1.0));
-  std::vector<double> phi, psi;
-  RotatedCoordinates(square, 40.0 * M_PI / 180.0, 2.3, 0.37, &phi, &psi);
-  auto [out, before] = ExtractValid(square, phi, psi, 0.4);
-  EXPECT_EQ(RefineBoundaryChords(square, 1e-6, 0.5, 0.4, &out), 0);
-  EXPECT_EQ(out.stats.slid_boundary_vertices, 0);
-  EXPECT_EQ(MeasureExtractedMesh(square, out, 30.0).n_faces, before.n_faces);
-
-  const SurfaceModel disk(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
-  RotatedCoordinates(disk, 0.3, 2.0, 0.37, &phi, &psi);
-  auto [disk_out, disk_before] = ExtractValid(disk, phi, psi, 0.4);
-  EXPECT_EQ(RefineBoundaryChords(disk, 0.0, 0.5, 0.4, &disk_out), 0);
-  EXPECT_EQ(disk_out.stats.slid_boundary_vertices, 0);
-  EXPECT_EQ(static_cast<int>(disk_out.mesh.n_faces()), disk_before.n_faces);
-}
-
-// A flat regular n-gon of circumradius r as a triangle mesh: a centre vertex and `rings`
-// concentric copies of the polygon, each side cut into `cuts` pieces. Its boundary turns by
-// 360°/n at each corner and not at all in between.
-TriMesh PolygonDisk(int n, double r, int rings, int cuts) {
-  PolygonSoup soup;
-  soup.points.emplace_back(0.0, 0.0, 0.0);
-  const int per_ring = n * cuts;
-  for (int k = 1; k <= rings; ++k)
-    for (int j = 0; j < per_ring; ++j) {
-      const double a0 = 2.0 * M_PI * (j / cuts) / n, a1 = 2.0 * M_PI * (j / cuts + 1) / n;
-      const double t = double(j % cuts) / cuts, scale = r * k / rings;
-      soup.points.emplace_back(scale * ((1 - t) * std::cos(a0) + t * std::cos(a1)),
-                               scale * ((1 - t) * std::sin(a0) + t * std::sin(a1)), 0.0);
-    }
-  const auto id = [&](int k, int j) { return k == 0 ? 0 : 1 + (k - 1) * per_ring + (j % per_ring); };
-  for (int j = 0; j < per_ring; ++j) soup.faces.push_back({0, id(1, j), id(1, j + 1)});
-  for (int k = 1; k < rings; ++k)
-    for (int j = 0; j < per_ring; ++j) {
-      soup.faces.push_back({id(k, j), id(k + 1, j), id(k + 1, j + 1)});
-      soup.faces.push_back({id(k, j), id(k + 1, j + 1), id(k, j + 1)});
-    }
-  return ToMesh(soup);
-}
-
-// A span that starts a hair before a kink (a chord end located at the kink up to rounding)
-// has that kink at offset ~0: FarthestKink must count it as the end and give the next kink.
-TEST(BoundaryRefinement, FarthestKinkSkipsKinksAtTheSpansEnds) {
-  const SurfaceModel s(PolygonDisk(24, 10.0, 4, 3));
-  const ReferenceBoundary boundary(s);
-  const double side = 2.0 * 10.0 * std::sin(M_PI / 24), min_turn = 5.0 * M_PI / 180.0, margin = 0.02;
-  const Eigen::Vector3d corner(10.0, 0.0, 0.0);
-  const auto at = boundary.Locate(corner);
-  ASSERT_LE(at.distance, 1e-12);
-  Eigen::Vector3d a, b;
-  for (const double before : {0.0, 1e-13, 1e-6}) {
-    const double from = at.arc - before;
-    for (const double span : {before + 1.5 * side, before + 0.5 * side}) {
-      boundary.PointAt(at.loop, from, &a);
-      boundary.PointAt(at.loop, from + span, &b);
-      const double kink = boundary.FarthestKink(a, b, at.loop, from, span, min_turn, margin);
-      // The next corner if the span reaches it, else none.
-      EXPECT_NEAR(kink, span > side ? before + side : -1.0, 1e-9) << before << " m before the corner, span " << span;
-      // Without the margin, the corner itself would be the split point of the shorter span.
-      if (before > 0.0 && span < side)
-        EXPECT_NEAR(boundary.FarthestKink(a, b, at.loop, from, span, min_turn, 0.0), before, 1e-9);
-    }
-  }
-  // A span that ends a hair past a kink, and nothing else: no kink.
-  boundary.PointAt(at.loop, at.arc, &a);
-  boundary.PointAt(at.loop, at.arc + side + 1e-9, &b);
-  EXPECT_EQ(boundary.FarthestKink(a, b, at.loop, at.arc, side + 1e-9, min_turn, margin), -1.0);
-}
-
-// A polygonal boundary with sharp kinks (24-gon: 15°, sides 1.3 h): boundary vertices snap
-// onto kinks and chords split at kinks. A kink at a chord's very end must count as that end:
-// taken as a split point it gave zero-length edges, again and again (hole_offcentre × curvature
-// inserted 1,312 vertices before the guard). Refined, every chord is within tolerance, no
-// edge is shorter than the polygon's own sides allow, and at most one vertex per kink and
-// per chord is inserted.
-TEST(BoundaryRefinement, SharpKinksAtChordEndsInsertNoShortEdges) {
-  const SurfaceModel s(PolygonDisk(24, 10.0, 8, 3));
-  const double h = 2.0, tolerance = 0.01 * h;
-  for (const double angle : {0.0, 0.3, 1.0}) {
-    std::vector<double> phi, psi;
-    RotatedCoordinates(s, angle, h, 0.37, &phi, &psi);
-    auto [out, before] = ExtractValid(s, phi, psi, 0.2 * h);
-    ASSERT_GT(before.boundary_deviation_edges, 3.0 * tolerance);
-    const int inserted = RefineBoundaryChords(s, tolerance, 0.25 * h, 0.2 * h, &out);
-    const ExtractedMeshMetrics after = MeasureExtractedMesh(s, out, 30.0);
-    std::cout << "24-gon, angle " << angle << ": deviation " << before.boundary_deviation_edges << " → "
-              << after.boundary_deviation_edges << " m, " << inserted << " inserted, "
-              << out.stats.slid_boundary_vertices << " slid, min edge " << before.edge_min / h << " → "
-              << after.edge_min / h << " h, quad fraction " << before.quad_fraction << " → " << after.quad_fraction
-              << "\n";
-    EXPECT_LE(after.boundary_deviation_edges, tolerance);
-    EXPECT_LE(inserted, 24);
-    EXPECT_EQ(after.n_faces, before.n_faces + inserted);
-    EXPECT_GE(after.face_sides.at(4), before.face_sides.at(4));
-    EXPECT_GE(after.edge_min, std::min(before.edge_min, 0.1 * h));
-    EXPECT_EQ(after.euler_characteristic, 1);
-    EXPECT_EQ(after.boundary_loops, 1);
-    ExpectSimpleCounterClockwiseManifold(out.mesh);
-    ExpectOriginsReproducePositions(s, out);
-  }
-}
-
 }  // namespace
 }  // namespace pqlayout
 
 namespace pqlayout {
 namespace {
+
+using namespace extraction_test;
 
 // φ, ψ with ties (values exactly on levels) or critical points, on the disk.
 ExtractedMesh ExtractVariant(const SurfaceModel& s, int variant) {

@@ -1,0 +1,153 @@
+// Boundary refinement (geometry/boundary_refinement.h, geometry/reference_boundary.h): chords
+// kept within a tolerance of a curved or polygonal reference boundary, on flat discs and
+// polygons with straight level lines, where every answer can be checked.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "geometry/boundary_refinement.h"
+#include "geometry/reference_boundary.h"
+#include "tests/extraction_test_helpers.h"
+#include "tests/test_meshes.h"
+
+namespace pqlayout {
+namespace {
+
+using testing::GeneratedMesh;
+using namespace extraction_test;
+
+// Faces with three consecutive vertices on the boundary (a panel with three points on the
+// Reading Room ring, a horizontal circle, could only be planar lying flat).
+int FacesWithThreeBoundaryVerticesInARow(const ExtractedMesh& out) {
+  int count = 0;
+  for (const auto f : out.mesh.faces()) {
+    std::vector<bool> on;
+    for (const auto v : out.mesh.fv_range(f)) on.push_back(out.origin[v.idx()].on_boundary);
+    const size_t n = on.size();
+    bool found = false;
+    for (size_t k = 0; k < n; ++k) found |= on[k] && on[(k + 1) % n] && on[(k + 2) % n];
+    count += found;
+  }
+  return count;
+}
+
+// A rotated grid on a disk of radius 10 with h = 2: boundary chords of up to ~2.8 m stand
+// up to ~0.1 m off the circle. Refined to 0.01 h, the mesh must stay a simple manifold disk
+// on the reference, gain exactly one face per inserted vertex, lose no quad, and never add a
+// face with three boundary vertices in a row.
+TEST(BoundaryRefinement, DiskChordsWithinToleranceAndStillAManifoldDisk) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  const double h = 2.0, tolerance = 0.01 * h;
+  for (const double angle : {0.3, 1.0}) {
+    std::vector<double> phi, psi;
+    RotatedCoordinates(s, angle, h, 0.37, &phi, &psi);
+    auto [out, before] = ExtractValid(s, phi, psi, 0.2 * h);
+    ASSERT_GT(before.boundary_deviation_edges, 3.0 * tolerance);
+    const int three_in_a_row = FacesWithThreeBoundaryVerticesInARow(out);
+    const int inserted = RefineBoundaryChords(s, tolerance, 0.25 * h, 0.2 * h, &out);
+    ExtractedMeshMetrics after = MeasureExtractedMesh(s, out, 30.0);
+    std::cout << "disk, angle " << angle << ": deviation " << before.boundary_deviation_edges << " → "
+              << after.boundary_deviation_edges << " m, " << inserted << " inserted, "
+              << out.stats.slid_boundary_vertices << " slid, quad fraction " << before.quad_fraction << " → "
+              << after.quad_fraction << "; faces with three boundary vertices in a row " << three_in_a_row << " → "
+              << FacesWithThreeBoundaryVerticesInARow(out) << "\n";
+    EXPECT_GT(inserted, 0);
+    EXPECT_LE(after.boundary_deviation_edges, tolerance);
+    EXPECT_EQ(after.n_faces, before.n_faces + inserted);
+    EXPECT_GE(after.face_sides[4], before.face_sides[4]);
+    EXPECT_EQ(after.euler_characteristic, 1);
+    EXPECT_EQ(after.boundary_loops, 1);
+    EXPECT_GE(after.edge_min, std::min(before.edge_min, 0.2 * h) - 1e-12);
+    EXPECT_EQ(after.planarity_max, 0.0);
+    EXPECT_LE(FacesWithThreeBoundaryVerticesInARow(out), three_in_a_row);  // none added
+    ExpectSimpleCounterClockwiseManifold(out.mesh);
+    ExpectOriginsReproducePositions(s, out);
+    for (const auto v : out.mesh.vertices())
+      if (out.mesh.is_boundary(v)) EXPECT_LE(ReferenceBoundary(s).Distance(ToEigen(out.mesh.point(v))), 1e-9);
+  }
+}
+
+// Only a curved boundary is refined: on a square nothing moves and nothing is inserted, and
+// tolerance 0 leaves a disk's mesh alone.
+TEST(BoundaryRefinement, StraightBoundaryOrZeroToleranceChangesNothing) {
+  const SurfaceModel square(ScaledGrid(24, 1.0));
+  std::vector<double> phi, psi;
+  RotatedCoordinates(square, 40.0 * M_PI / 180.0, 2.3, 0.37, &phi, &psi);
+  auto [out, before] = ExtractValid(square, phi, psi, 0.4);
+  EXPECT_EQ(RefineBoundaryChords(square, 1e-6, 0.5, 0.4, &out), 0);
+  EXPECT_EQ(out.stats.slid_boundary_vertices, 0);
+  EXPECT_EQ(MeasureExtractedMesh(square, out, 30.0).n_faces, before.n_faces);
+
+  const SurfaceModel disk(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  RotatedCoordinates(disk, 0.3, 2.0, 0.37, &phi, &psi);
+  auto [disk_out, disk_before] = ExtractValid(disk, phi, psi, 0.4);
+  EXPECT_EQ(RefineBoundaryChords(disk, 0.0, 0.5, 0.4, &disk_out), 0);
+  EXPECT_EQ(disk_out.stats.slid_boundary_vertices, 0);
+  EXPECT_EQ(static_cast<int>(disk_out.mesh.n_faces()), disk_before.n_faces);
+}
+
+// A span that starts a hair before a kink (a chord end located at the kink up to rounding)
+// has that kink at offset ~0: FarthestKink must count it as the end and give the next kink.
+TEST(BoundaryRefinement, FarthestKinkSkipsKinksAtTheSpansEnds) {
+  const SurfaceModel s(PolygonDisk(24, 10.0, 4, 3));
+  const ReferenceBoundary boundary(s);
+  const double side = 2.0 * 10.0 * std::sin(M_PI / 24), min_turn = 5.0 * M_PI / 180.0, margin = 0.02;
+  const Eigen::Vector3d corner(10.0, 0.0, 0.0);
+  const auto at = boundary.Locate(corner);
+  ASSERT_LE(at.distance, 1e-12);
+  Eigen::Vector3d a, b;
+  for (const double before : {0.0, 1e-13, 1e-6}) {
+    const double from = at.arc - before;
+    for (const double span : {before + 1.5 * side, before + 0.5 * side}) {
+      boundary.PointAt(at.loop, from, &a);
+      boundary.PointAt(at.loop, from + span, &b);
+      const double kink = boundary.FarthestKink(a, b, at.loop, from, span, min_turn, margin);
+      // The next corner if the span reaches it, else none.
+      EXPECT_NEAR(kink, span > side ? before + side : -1.0, 1e-9) << before << " m before the corner, span " << span;
+      // Without the margin, the corner itself would be the split point of the shorter span.
+      if (before > 0.0 && span < side)
+        EXPECT_NEAR(boundary.FarthestKink(a, b, at.loop, from, span, min_turn, 0.0), before, 1e-9);
+    }
+  }
+  // A span that ends a hair past a kink, and nothing else: no kink.
+  boundary.PointAt(at.loop, at.arc, &a);
+  boundary.PointAt(at.loop, at.arc + side + 1e-9, &b);
+  EXPECT_EQ(boundary.FarthestKink(a, b, at.loop, at.arc, side + 1e-9, min_turn, margin), -1.0);
+}
+
+// A polygonal boundary with sharp kinks (24-gon: 15°, sides 1.3 h): boundary vertices snap
+// onto kinks and chords split at kinks. A kink at a chord's very end must count as that end:
+// taken as a split point it gave zero-length edges, again and again (hole_offcentre × curvature
+// inserted 1,312 vertices before the guard). Refined, every chord is within tolerance, no
+// edge is shorter than the polygon's own sides allow, and at most one vertex per kink and
+// per chord is inserted.
+TEST(BoundaryRefinement, SharpKinksAtChordEndsInsertNoShortEdges) {
+  const SurfaceModel s(PolygonDisk(24, 10.0, 8, 3));
+  const double h = 2.0, tolerance = 0.01 * h;
+  for (const double angle : {0.0, 0.3, 1.0}) {
+    std::vector<double> phi, psi;
+    RotatedCoordinates(s, angle, h, 0.37, &phi, &psi);
+    auto [out, before] = ExtractValid(s, phi, psi, 0.2 * h);
+    ASSERT_GT(before.boundary_deviation_edges, 3.0 * tolerance);
+    const int inserted = RefineBoundaryChords(s, tolerance, 0.25 * h, 0.2 * h, &out);
+    const ExtractedMeshMetrics after = MeasureExtractedMesh(s, out, 30.0);
+    std::cout << "24-gon, angle " << angle << ": deviation " << before.boundary_deviation_edges << " → "
+              << after.boundary_deviation_edges << " m, " << inserted << " inserted, "
+              << out.stats.slid_boundary_vertices << " slid, min edge " << before.edge_min / h << " → "
+              << after.edge_min / h << " h, quad fraction " << before.quad_fraction << " → " << after.quad_fraction
+              << "\n";
+    EXPECT_LE(after.boundary_deviation_edges, tolerance);
+    EXPECT_LE(inserted, 24);
+    EXPECT_EQ(after.n_faces, before.n_faces + inserted);
+    EXPECT_GE(after.face_sides.at(4), before.face_sides.at(4));
+    EXPECT_GE(after.edge_min, std::min(before.edge_min, 0.1 * h));
+    EXPECT_EQ(after.euler_characteristic, 1);
+    EXPECT_EQ(after.boundary_loops, 1);
+    ExpectSimpleCounterClockwiseManifold(out.mesh);
+    ExpectOriginsReproducePositions(s, out);
+  }
+}
+
+}  // namespace
+}  // namespace pqlayout
