@@ -10,18 +10,21 @@
 
 namespace pqlayout {
 
+// Writes x into buffer (64 bytes suffice for any precision ≤ 40); returns the length.
+inline size_t FormatNumber(double x, int precision, char (&buffer)[64]) {
+  return std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, precision).ptr - buffer;
+}
+
 // Appends x to *out.
 inline void AppendNumber(std::string* out, double x, int precision) {
   char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, precision);
-  out->append(buffer, result.ptr);
+  out->append(buffer, FormatNumber(x, precision, buffer));
 }
 
 // Writes x to out.
 inline void WriteNumber(std::ostream& out, double x, int precision) {
   char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, precision);
-  out.write(buffer, result.ptr - buffer);
+  out.write(buffer, FormatNumber(x, precision, buffer));
 }
 
 }  // namespace pqlayout
