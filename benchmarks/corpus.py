@@ -5,12 +5,19 @@ stage's key metrics and time, each checked against the issue's targets.
     bash benchmarks/corpus.sh                 # builds, then runs this; ~5 min on 2 cores
     PYTHONPATH=build/python python3 benchmarks/corpus.py [--set KEY=VALUE ...] [--roofs a,b]
 
-Writes benchmarks/corpus.md (the table, misses in bold with the reason) and
-benchmarks/corpus.csv (every number). Uses the Python module: one process, no files per run.
+Writes benchmarks/corpus.md (the table, misses in bold with the reason, and a gallery of the
+level lines of every run) and benchmarks/corpus.csv (every number). Uses the Python
+module: one process; each run writes its files into a temporary folder (stage seconds include
+writing them, as on the command line), of which figures/levelsets.svg becomes
+docs/corpus/<roof>_<source>.png (rsvg-convert and pngquant; corpus.sh installs them).
 """
 import argparse
 import csv
+import os
+import shutil
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -83,15 +90,26 @@ def main():
     parser.add_argument("--set", action="append", default=[], help="KEY=VALUE for every run")
     parser.add_argument("--roofs", default="", help="comma-separated roof names (default: all)")
     parser.add_argument("--out", default=str(HERE / "corpus"), help="output stem (.md, .csv)")
+    parser.add_argument("--figures", default=str(ROOT / "docs" / "corpus"),
+                        help="folder for the gallery's PNGs ('' for none)")
     args = parser.parse_args()
+    figures = Path(args.figures) if args.figures and shutil.which("rsvg-convert") else None
+    if args.figures and figures is None:
+        print("corpus: rsvg-convert not found, no gallery", file=sys.stderr)
+    if figures:
+        figures.mkdir(parents=True, exist_ok=True)
+    scratch = tempfile.TemporaryDirectory(prefix="pq_corpus_")
     rows = []
     for config in roofs([r for r in args.roofs.split(",") if r]):
         for source in ("strain", "curvature"):
             start = time.monotonic()
             row = {"roof": config.stem, "source": source}
             try:
-                result = pqlayout.run(config, set=args.set + [f"guidance.source={source}"])
+                out = Path(scratch.name) / f"{config.stem}_{source}"
+                result = pqlayout.run(config, set=args.set + [f"guidance.source={source}"], out=out)
                 row.update(measure(result.report))
+                if figures:
+                    row["figure"] = thumbnail(out / "figures" / "levelsets.svg", figures / f"{out.name}.png")
                 row["warnings"] = len(result.report.get("warnings", []))
                 row["causes"] = [(t["name"], t["value"], t["target"], t["cause"])
                                  for t in result.report["targets"]["list"] if not t["met"]]
@@ -104,6 +122,14 @@ def main():
             rows.append(row)
     write_csv(rows, Path(args.out + ".csv"))
     write_markdown(rows, Path(args.out + ".md"), args.set)
+
+
+def thumbnail(svg, png, width=360):
+    """svg as a PNG `width` pixels wide (colours quantised if pngquant is there); its path."""
+    subprocess.run(["rsvg-convert", "-w", str(width), str(svg), "-o", str(png)], check=True)
+    if shutil.which("pngquant"):
+        subprocess.run(["pngquant", "--quality=60-85", "--speed", "1", "-f", "-o", str(png), str(png)], check=True)
+    return png
 
 
 def write_csv(rows, path):
@@ -141,6 +167,17 @@ def write_markdown(rows, path, sets):
     for row in rows:
         for name, value, target, cause in row.get("causes", []):
             lines.append(f"- **{row['roof']} × {row['source']}**, `{name}` {fmt(value)} (target {target}): {cause}")
+    figures = {(r["roof"], r["source"]): r["figure"] for r in rows if "figure" in r}
+    if figures:
+        lines += ["", "## Gallery", "",
+                  "The level lines of every run: φ (black) along the guidance, ψ (blue) conjugate, hatched "
+                  "where the guidance is too weak to align to (figures/levelsets.svg of each run).", "", "| roof | strain | curvature |", "|---|---|---|"]
+        for roof in dict.fromkeys(r["roof"] for r in rows):
+            cells = []
+            for source in ("strain", "curvature"):
+                f = figures.get((roof, source))
+                cells.append(f"![{roof} × {source}]({Path(os.path.relpath(f, path.parent)).as_posix()})" if f else "")
+            lines.append(f"| {roof} | " + " | ".join(cells) + " |")
     path.write_text("\n".join(lines) + "\n")
     print(f"wrote {path} and {path.with_suffix('.csv')}: all targets met in {met} of {len(rows)} runs")
 
