@@ -12,7 +12,8 @@
 # on a shared machine wander by ~20 %; sub-second stages by more). Such a check would have
 # caught the poles' doubling of the Great Court's level-set stage (7.1 → 15.3 s, 2026-12-02).
 # The baseline is machine-specific: update it (and say on which machine) when the machine or
-# a deliberate trade changes. Needs jq (installed if missing).
+# a deliberate trade changes. Needs jq (installed if missing). The committed baseline: the
+# project's 2-core machine, idle, 2026-12-03, commit after fe70fcb (the pole gate).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -31,7 +32,11 @@ measure() {  # case name, then pqlayout --set arguments
   : > "$samples"
   for ((i = 1; i <= repeat; i++)); do
     rm -rf "$work/run"
-    "$pqlayout" run examples/great_court.yaml "$@" --out "$work/run" -q 2>/dev/null
+    if ! "$pqlayout" run examples/great_court.yaml "$@" --out "$work/run" -q > "$work/log" 2>&1; then
+      cat "$work/log" >&2
+      echo "$name: $case_: the run failed" >&2
+      exit 2
+    fi
     jq -r '(.run.completed_stages[] as $s | "\($s),\(.stages[$s].seconds)"), "total,\(.run.total_seconds)"' \
       "$work/run/report.json" >> "$samples"
   done
@@ -62,6 +67,6 @@ awk -F, 'NR == FNR { if (FNR > 1) base[$1 "," $2] = $3; next }
     ratio = b > 0 ? $3 / b : 0
     flag = (b >= 0 && $3 > 1.5 * b && $3 > b + 0.3) ? "  REGRESSION" : ""
     if (flag != "") bad++
-    printf "%-16s %-10s %10s %10.3f %7s%s\n", $1, $2, b >= 0 ? sprintf("%.3f", b) : "new", $3,
-           b > 0 ? sprintf("%.2f", ratio) : "-", flag }
+    shown = (b >= 0) ? sprintf("%.3f", b) : "new"
+    printf "%-16s %-10s %10s %10.3f %7s%s\n", $1, $2, shown, $3, (b > 0) ? sprintf("%.2f", ratio) : "-", flag }
   END { if (bad) { printf "%d stage(s) regressed\n", bad; exit 1 } print "no stage regressed" }' "$baseline" "$current"
