@@ -135,8 +135,8 @@ class Surroundings {
 
 // Why a short edge at a polygonal boundary could not be avoided, if an end sits on a sharp kink
 // of the reference boundary (SharpKinkTurn: the chord refinement puts a vertex there, or moves
-// one onto it): both ends → the reference's own segment is that short; one end → the other, a
-// level line's end, could not move onto the kink without shearing its panel. "" otherwise.
+// one onto it): both ends → the reference's own segment is that short; one end → the other
+// could not move onto the kink (SlideToKink refused it). "" otherwise.
 std::string KinkNote(const PipelineState& state, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const double h = state.config.layout.spacing;
   const double sharp = SharpKinkTurn(state.config.extract.boundary_tolerance * h, state.config.extract.min_edge * h);
@@ -148,8 +148,9 @@ std::string KinkNote(const PipelineState& state, const Eigen::Vector3d& a, const
            "), which panels must follow within extract.boundary_tolerance: the reference's own segment is this short";
   if (at_a > sharp || at_b > sharp)
     return "one end sits on a kink of the reference boundary (it turns by " + degrees(std::max(at_a, at_b)) +
-           "), which panels must follow within extract.boundary_tolerance; the other end, where a level line meets "
-           "the boundary, could not move onto the kink without a panel angle more than 3° below min(20°, its own)";
+           "), which panels must follow within extract.boundary_tolerance; the other end could not move onto the "
+           "kink (a corner, a vertex already placed, or one whose panel would get an angle more than 3° below "
+           "min(20°, its own) or a shorter edge)";
   return "";
 }
 
