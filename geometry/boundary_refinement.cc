@@ -298,36 +298,70 @@ PolyMesh BuildPolyMesh(const std::vector<Eigen::Vector3d>& position, const std::
   return refined;
 }
 
+// The extracted mesh as plain polygons the refinement edits: positions, faces and which face
+// each halfedge belongs to.
+struct Polygons {
+  std::vector<Eigen::Vector3d> position;
+  std::vector<std::vector<int>> faces;
+  std::map<std::pair<int, int>, int> face_of;  // halfedge → face
+
+  explicit Polygons(const PolyMesh& mesh) {
+    for (const auto v : mesh.vertices()) position.push_back(ToEigen(mesh.point(v)));
+    for (const auto f : mesh.faces()) {
+      std::vector<int> face;
+      for (const auto v : mesh.fv_range(f)) face.push_back(v.idx());
+      faces.push_back(std::move(face));
+    }
+    for (size_t f = 0; f < faces.size(); ++f) Register(int(f));
+  }
+  void Register(int f) {
+    const auto& face = faces[f];
+    for (size_t k = 0; k < face.size(); ++k) face_of[{face[k], face[(k + 1) % face.size()]}] = f;
+  }
+  // The mesh-boundary halfedges at vertex v (all of them if v < 0) whose ends are both on the
+  // reference boundary (if on_boundary is given).
+  void BoundaryHalfedges(int v, const std::vector<QuadMeshVertex>* on_boundary,
+                         std::deque<std::pair<int, int>>* queue) const {
+    for (const auto& [halfedge, f] : face_of) {
+      if (face_of.count({halfedge.second, halfedge.first})) continue;
+      if (v >= 0 && halfedge.first != v && halfedge.second != v) continue;
+      if (on_boundary && !((*on_boundary)[halfedge.first].on_boundary && (*on_boundary)[halfedge.second].on_boundary))
+        continue;
+      queue->push_back(halfedge);
+    }
+  }
+  // Adds vertex m (at p) on the boundary edge a → b of face f and cuts the face there
+  // (BestSplit): the face as [b, v1, ..., vr, a], then [m, b, v1, ..., vj] and [vj, ..., vr, a, m].
+  void SplitAt(int f, int a, int b, const Eigen::Vector3d& p, const std::vector<QuadMeshVertex>& origin,
+               double min_edge) {
+    const int m = static_cast<int>(position.size());
+    position.push_back(p);
+    std::vector<int> loop = faces[f];
+    std::rotate(loop.begin(), std::find(loop.begin(), loop.end(), b), loop.end());
+    std::vector<int> best1, best2;
+    BestSplit(loop, m, position, origin, min_edge, &best1, &best2);
+    for (size_t k = 0; k < faces[f].size(); ++k) face_of.erase({faces[f][k], faces[f][(k + 1) % faces[f].size()]});
+    faces[f] = best1;
+    faces.push_back(best2);
+    Register(f);
+    Register(static_cast<int>(faces.size()) - 1);
+  }
+};
+
 }  // namespace
 
 int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double max_slide, double min_edge,
                          ExtractedMesh* out) {
   if (!(tolerance > 0.0)) return 0;
   const ReferenceBoundary boundary(surface);
-  PolyMesh& mesh = out->mesh;
-  std::vector<Eigen::Vector3d> position;
-  for (const auto v : mesh.vertices()) position.push_back(ToEigen(mesh.point(v)));
   std::vector<QuadMeshVertex>& origin = out->origin;
-  std::vector<std::vector<int>> faces;
-  for (const auto f : mesh.faces()) {
-    std::vector<int> face;
-    for (const auto v : mesh.fv_range(f)) face.push_back(v.idx());
-    faces.push_back(std::move(face));
-  }
-  std::map<std::pair<int, int>, int> face_of;  // halfedge → face
-  const auto register_face = [&](int f) {
-    const auto& face = faces[f];
-    for (size_t k = 0; k < face.size(); ++k) face_of[{face[k], face[(k + 1) % face.size()]}] = f;
-  };
-  for (size_t f = 0; f < faces.size(); ++f) register_face(int(f));
+  Polygons m(out->mesh);
+  std::vector<Eigen::Vector3d>& position = m.position;
   std::deque<std::pair<int, int>> queue;
-  for (const auto& [halfedge, f] : face_of)
-    if (!face_of.count({halfedge.second, halfedge.first}) && origin[halfedge.first].on_boundary &&
-        origin[halfedge.second].on_boundary)
-      queue.push_back(halfedge);
+  m.BoundaryHalfedges(-1, &origin, &queue);
   // 1. Slide boundary vertices along the boundary (at most max_slide from where the level
   //    lines put them) to even out neighbouring chords, so that fewer vertices are needed.
-  const int slid = SlideBoundaryVertices(boundary, tolerance, max_slide, min_edge, faces, face_of, &position, &origin);
+  const int slid = SlideBoundaryVertices(boundary, tolerance, max_slide, min_edge, m.faces, m.face_of, &position, &origin);
   std::vector<std::optional<ReferenceBoundary::Location>> located;  // per vertex, once
   const auto locate = [&](int v) {
     if (v >= int(located.size())) located.resize(v + 1);
@@ -340,14 +374,14 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
   for (size_t v = 0; v < position.size(); ++v) pinned[v] = origin[v].corner;
   // Sharp kinks: those that turn by more than min_turn (SnapToSharpKinks).
   const double min_turn = SharpKinkTurn(tolerance, min_edge);
-  int slid_to_kinks = SnapToSharpKinks(boundary, min_turn, min_edge, faces, face_of, &position, &origin, &pinned);
+  int slid_to_kinks = SnapToSharpKinks(boundary, min_turn, min_edge, m.faces, m.face_of, &position, &origin, &pinned);
   int inserted = 0;
   const int max_insertions = 4 * static_cast<int>(position.size()) + 16;  // a guard, never reached in practice
   while (!queue.empty() && inserted < max_insertions) {
     const auto [a, b] = queue.front();
     queue.pop_front();
-    const auto found = face_of.find({a, b});
-    if (found == face_of.end()) continue;
+    const auto found = m.face_of.find({a, b});
+    if (found == m.face_of.end()) continue;
     const int f = found->second;
     const auto la = locate(a), lb = locate(b);
     const Span span = Between(boundary, la, lb);
@@ -355,49 +389,36 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     const double from = span.from;
     if (boundary.ChordDeviation(position[a], position[b], la.loop, from, span.span) <= tolerance) continue;
 
-    // The new boundary vertex m: at the sharp kink (SnapToSharpKinks) of the reference boundary
-    // farthest from the chord if the span holds one, else halfway.
+    // The new boundary vertex: at the sharp kink (SnapToSharpKinks) of the reference boundary
+    // farthest from the chord if the span holds one, else halfway. A kink within `tolerance` of
+    // an end adds at most `tolerance` to the chord's deviation: it counts as that end.
     // A kink closer than min_edge to an end that may move takes that end instead.
-    // A kink within `tolerance` of an end adds at most `tolerance` to the chord's deviation.
     const double kink = boundary.FarthestKink(position[a], position[b], la.loop, from, span.span, min_turn, tolerance);
     if (kink >= 0.0 && std::min(kink, span.span - kink) < min_edge) {
       const bool near_start = kink < span.span - kink;
       const int end = near_start == span.a_first ? a : b;
       const double start = near_start ? from : from + span.span;
-      if (SlideToKink(boundary, la.loop, start, from + kink - start, end, min_edge, faces, &position, &origin,
+      if (SlideToKink(boundary, la.loop, start, from + kink - start, end, min_edge, m.faces, &position, &origin,
                       &pinned)) {
         located[end] = boundary.Locate(position[end]);
-        for (const auto& [halfedge, g] : face_of)
-          if ((halfedge.first == end || halfedge.second == end) && !face_of.count({halfedge.second, halfedge.first}))
-            queue.push_back(halfedge);
+        m.BoundaryHalfedges(end, nullptr, &queue);
         ++slid_to_kinks;
         continue;
       }
     }
-    const int m = static_cast<int>(position.size());
     Eigen::Vector3d p;
     origin.push_back(boundary.PointAt(la.loop, from + (kink >= 0.0 ? kink : 0.5 * span.span), &p));
     pinned.push_back(true);
-    position.push_back(p);
-    // The face as [b, v1, ..., vr, a] (its edge a → b closes the loop), then cut by m – v_j
-    // into [m, b, v1, ..., vj] and [vj, ..., vr, a, m].
-    std::vector<int> loop = faces[f];
-    std::rotate(loop.begin(), std::find(loop.begin(), loop.end(), b), loop.end());
-    std::vector<int> best1, best2;
-    BestSplit(loop, m, position, origin, min_edge, &best1, &best2);
-    for (size_t k = 0; k < faces[f].size(); ++k) face_of.erase({faces[f][k], faces[f][(k + 1) % faces[f].size()]});
-    faces[f] = best1;
-    faces.push_back(best2);
-    register_face(f);
-    register_face(static_cast<int>(faces.size()) - 1);
-    queue.push_back({a, m});
-    queue.push_back({m, b});
+    const int added = static_cast<int>(position.size());
+    m.SplitAt(f, a, b, p, origin, min_edge);
+    queue.push_back({a, added});
+    queue.push_back({added, b});
     ++inserted;
   }
   out->stats.slid_boundary_vertices += slid + slid_to_kinks;
   if (inserted == 0 && slid + slid_to_kinks == 0) return 0;
 
-  mesh = BuildPolyMesh(position, faces, &out->stats.rejected_faces);
+  out->mesh = BuildPolyMesh(position, m.faces, &out->stats.rejected_faces);
   out->stats.refined_boundary_edges += inserted;
   return inserted;
 }
