@@ -61,13 +61,14 @@ int CollapseBoundaryTriangles(double min_angle, Polygons* m);
 // - a cell that touches no boundary and has 6 or 8 sides (where the curves fan out around a
 //   singularity of the guidance): 2 or 3 quads, the singularity then a vertex of valence 3 or
 //   5, as in any quad mesh; failing that 3 or 4 quads around a new centre vertex (marked
-//   `centre`: the caller puts it on the surface);
+//   `centre`: the caller puts it on the surface) at the corners' average or the best place
+//   near it, none of its edges shorter than min_edge;
 // - a boundary cell of 6 to 10 sides (a level line that turned back near the boundary):
 //   quads, plus one triangle cut off at a boundary vertex if the number of sides is odd (so
 //   that every cell off the boundary stays a quad); no diagonal
 //   joins two boundary vertices. A large unbraced panel is both hard to make planar and
 //   the softest part of the frame.
 // Returns the number of interior and of boundary cells cut.
-std::pair<int, int> SplitLargePolygons(double min_angle, Polygons* m);
+std::pair<int, int> SplitLargePolygons(double min_angle, Polygons* m, double min_edge = 0.0);
 
 }  // namespace pqlayout::extraction_internal

@@ -185,7 +185,7 @@ void CleanUpAndBuild(double min_edge_length, bool pair_boundary_triangles, Polyg
     out->stats.resplit_boundary_pairs = ResplitBoundaryTrianglePentagonPairs(&polygons);
     out->stats.collapsed_boundary_triangles = CollapseBoundaryTriangles(kMinResplitAngle, &polygons);
     std::tie(out->stats.split_interior_polygons, out->stats.split_boundary_polygons) =
-        SplitLargePolygons(kMinResplitAngle, &polygons);
+        SplitLargePolygons(kMinResplitAngle, &polygons, min_edge_length);
   }
   out->stats.floating_faces = DropFloatingParts(&polygons);
   Compact(&polygons);

@@ -37,7 +37,7 @@ struct CorpusCase {
 const CorpusCase kCases[] = {
     {"barrel", "strain", {}},
     {"barrel", "curvature", {}},
-    {"canopy", "strain", {{"quad_fraction", 0.72}, {"interior_non_quads", 3}}},
+    {"canopy", "strain", {{"quad_fraction", 0.73}}},  // its 8-gon got a centre vertex off the corners' average
     {"canopy", "curvature", {}},
     {"dome_circular", "strain", {{"spacing_cv", 0.358}, {"interior_non_quads", 3}}},  // a pole since 2026-12-02
     {"dome_circular", "curvature", {{"quad_fraction", 0.74}}},

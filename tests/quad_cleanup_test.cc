@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/polygon_shape.h"
+
 namespace pqlayout {
 
 // A part of the extracted mesh that touches no reference boundary (an island ringed by cells
@@ -96,6 +98,42 @@ TEST(QuadCleanup, AHexagonNoDiagonalCutsWellGetsACentreVertex) {
   EXPECT_EQ(extraction_internal::SplitLargePolygons(extraction_internal::kMinResplitAngle, &regular).first, 1);
   EXPECT_EQ(regular.position.size(), 12u);
   EXPECT_EQ(regular.faces.size(), 8u);
+}
+
+// The same star hexagon with one far corner at 2.5 instead of 1: the corners' average moves
+// 0.25 towards it, where the quads round a centre vertex get an 11° corner; at the star's own
+// centre their worst corner is 26.6° (measured by hand with ShapeAngle's rule). CentreSplit's
+// search must find such a place: three quads, every corner and supplement ≥ 20°.
+TEST(QuadCleanup, ACentreVertexMovesOffTheCornersAverageIfThatCutsBadly) {
+  extraction_internal::Polygons m;
+  for (int k = 0; k < 6; ++k) {
+    const double r = k == 0 ? 2.5 : (k % 2 == 0 ? 1.0 : 0.6), a = k * M_PI / 3.0;
+    m.position.emplace_back(r * std::cos(a), r * std::sin(a), 0.0);
+    m.origin.push_back(QuadMeshVertex());
+  }
+  Eigen::Vector3d average = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 6; ++k) average += m.position[k] / 6.0;
+  for (int k = 0; k < 6; ++k) {
+    m.position.push_back(3.0 * m.position[k]);
+    m.origin.push_back(QuadMeshVertex());
+  }
+  m.faces.push_back({0, 1, 2, 3, 4, 5});
+  for (int k = 0; k < 6; ++k) m.faces.push_back({(k + 1) % 6, k, 6 + k, 6 + (k + 1) % 6});
+  const auto [interior, boundary] = extraction_internal::SplitLargePolygons(extraction_internal::kMinResplitAngle, &m);
+  EXPECT_EQ(interior, 1);
+  ASSERT_EQ(m.position.size(), 13u);
+  EXPECT_TRUE(m.origin[12].centre);
+  EXPECT_GT((m.position[12] - average).norm(), 0.1);  // not at the corners' average
+  EXPECT_LT(m.position[12].norm(), 0.35);             // near the star's centre
+  ASSERT_EQ(m.faces.size(), 9u);
+  int around = 0;
+  for (const auto& face : m.faces) {
+    EXPECT_EQ(face.size(), 4u);
+    if (std::find(face.begin(), face.end(), 12) == face.end()) continue;  // the ring (a fixture)
+    ++around;
+    EXPECT_GE(ShapeAngle(m.position, face), extraction_internal::kMinResplitAngle);
+  }
+  EXPECT_EQ(around, 3);
 }
 
 }  // namespace pqlayout
