@@ -53,14 +53,13 @@ TEST(QuadCleanup, CollapseBlockerNamesWhyAnEdgeStays) {
   EXPECT_STREQ(extraction_internal::CollapseBlocker(m, 0, 1), "both ends are boundary corners");
 }
 
-// An interior hexagon with corners alternately 1 and 0.6 from its centre: every cut by a
-// diagonal leaves a quad with a 13° corner (below the 20° bound), so it used to stay a
-// hexagon; around a centre vertex joined to the three near corners each quad's smallest
-// corner or supplement is 60°. A ring of quads keeps the hexagon off the boundary.
-TEST(QuadCleanup, AHexagonNoDiagonalCutsWellGetsACentreVertex) {
+// A star hexagon (corners at angles k·60°, the even ones `far` from the origin, corner 0 at
+// far0, the odd ones 0.6) inside a ring of six quads (the corners scaled by 3), so that it
+// touches no boundary: vertices 0–5 the hexagon, 6–11 the ring; face 0 the hexagon.
+static extraction_internal::Polygons StarHexagonInARing(double far0, double far) {
   extraction_internal::Polygons m;
   for (int k = 0; k < 6; ++k) {
-    const double r = k % 2 == 0 ? 1.0 : 0.6, a = k * M_PI / 3.0;
+    const double r = k == 0 ? far0 : (k % 2 == 0 ? far : 0.6), a = k * M_PI / 3.0;
     m.position.emplace_back(r * std::cos(a), r * std::sin(a), 0.0);
     m.origin.push_back(QuadMeshVertex());
   }
@@ -70,6 +69,15 @@ TEST(QuadCleanup, AHexagonNoDiagonalCutsWellGetsACentreVertex) {
   }
   m.faces.push_back({0, 1, 2, 3, 4, 5});
   for (int k = 0; k < 6; ++k) m.faces.push_back({(k + 1) % 6, k, 6 + k, 6 + (k + 1) % 6});
+  return m;
+}
+
+// An interior hexagon with corners alternately 1 and 0.6 from its centre: every cut by a
+// diagonal leaves a quad with a 13° corner (below the 20° bound), so it used to stay a
+// hexagon; around a centre vertex joined to the three near corners each quad's smallest
+// corner or supplement is 60°. A ring of quads keeps the hexagon off the boundary.
+TEST(QuadCleanup, AHexagonNoDiagonalCutsWellGetsACentreVertex) {
+  extraction_internal::Polygons m = StarHexagonInARing(1.0, 1.0);
   const auto [interior, boundary] = extraction_internal::SplitLargePolygons(extraction_internal::kMinResplitAngle, &m);
   EXPECT_EQ(interior, 1);
   EXPECT_EQ(boundary, 0);
@@ -105,20 +113,9 @@ TEST(QuadCleanup, AHexagonNoDiagonalCutsWellGetsACentreVertex) {
 // centre their worst corner is 26.6° (measured by hand with ShapeAngle's rule). CentreSplit's
 // search must find such a place: three quads, every corner and supplement ≥ 20°.
 TEST(QuadCleanup, ACentreVertexMovesOffTheCornersAverageIfThatCutsBadly) {
-  extraction_internal::Polygons m;
-  for (int k = 0; k < 6; ++k) {
-    const double r = k == 0 ? 2.5 : (k % 2 == 0 ? 1.0 : 0.6), a = k * M_PI / 3.0;
-    m.position.emplace_back(r * std::cos(a), r * std::sin(a), 0.0);
-    m.origin.push_back(QuadMeshVertex());
-  }
+  extraction_internal::Polygons m = StarHexagonInARing(2.5, 1.0);
   Eigen::Vector3d average = Eigen::Vector3d::Zero();
   for (int k = 0; k < 6; ++k) average += m.position[k] / 6.0;
-  for (int k = 0; k < 6; ++k) {
-    m.position.push_back(3.0 * m.position[k]);
-    m.origin.push_back(QuadMeshVertex());
-  }
-  m.faces.push_back({0, 1, 2, 3, 4, 5});
-  for (int k = 0; k < 6; ++k) m.faces.push_back({(k + 1) % 6, k, 6 + k, 6 + (k + 1) % 6});
   const auto [interior, boundary] = extraction_internal::SplitLargePolygons(extraction_internal::kMinResplitAngle, &m);
   EXPECT_EQ(interior, 1);
   ASSERT_EQ(m.position.size(), 13u);
