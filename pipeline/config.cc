@@ -268,6 +268,9 @@ KeyTable::KeyTable(Config* c) {
   Number("analysis.section.thickness", &a.section.thickness, AtLeast(kMinSection, 100.0), "wall thickness t, m");
   Number("analysis.section.width", &a.section.width, AtLeast(kMinSection, 100.0), "rectangular hollow: width (in the surface), m");
   Number("analysis.section.height", &a.section.height, AtLeast(kMinSection, 100.0), "rectangular hollow: height (along the surface normal), m");
+
+  Bool("output.fields", &c->output.fields,
+       "write fields/*.csv and fields.vtk (one row per reference vertex or face: ~150 MB at 1M triangles); false for sweeps");
 }
 
 int EditDistance(const std::string& a, const std::string& b) {

@@ -30,6 +30,7 @@ struct Config {
   PlanarizeOptions planarize;
   StiffenOptions stiffen;
   AnalysisOptions analysis;
+  OutputOptions output;
 };
 
 // Reads a YAML config file and applies `--set KEY=VALUE` overrides (VALUE is YAML) after

@@ -101,8 +101,10 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
             << " % of faces with weight > 0.5, " << (*metrics)["singularities"]["count"] << " singularities "
             << (*metrics)["singularities"]["by_index"].dump()
             << ", " << (*metrics)["n_sources"] << " sources (minima of the field's magnitude)";
-  PQ_RETURN_IF_ERROR(WriteGuidanceOutputs(surface, v_z, g, out));
-  PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
+  if (state->config.output.fields) {
+    PQ_RETURN_IF_ERROR(WriteGuidanceOutputs(surface, v_z, g, out));
+    PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
+  }
   const bool strain = options.source == "strain";
   const std::string title = strain ? "Guidance: principal strain directions (integral curves)"
                                    : "Guidance: " + options.source + " directions (integral curves)";

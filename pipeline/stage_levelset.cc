@@ -49,8 +49,10 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
     poles.push_back({{"centre", {c.centre.x(), c.centre.y(), c.centre.z()}}, {"cap_radius", c.radius}});
   (*metrics)["poles"] = poles;
   if (!solution.rejected_poles.is_null()) (*metrics)["poles_not_kept"] = solution.rejected_poles;
-  PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
-  PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
+  if (state->config.output.fields) {
+    PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
+    PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
+  }
   const auto& m = solution.metrics;
   LOG(INFO) << "levelset: alignment " << m.alignment_rms_deg << "° RMS (" << m.alignment_rms_deg_strong
             << "° where weight > 0.5), spacing CV φ " << m.spacing_cv_phi << " ψ " << m.spacing_cv_psi

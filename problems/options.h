@@ -156,6 +156,13 @@ struct SectionOptions {
   double height = 0.12;       // rectangular hollow: height (along the surface normal), m
 };
 
+// What a run writes besides the layout, the analysis, the figures and the report.
+struct OutputOptions {
+  // fields/vertices.csv, fields/faces.csv, fields/levelsets.csv and fields.vtk: per element
+  // of the reference, so ~150 MB at a million triangles; sweeps may not want them.
+  bool fields = true;
+};
+
 struct AnalysisOptions {
   double panel_load = 1000.0;  // panel dead load, N/m² of face area
   double gravity = 9.81;       // g, m/s²

@@ -336,8 +336,9 @@ Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out, const Vie
     page << FigureHtml(out->Path(std::string("figures/") + figure.file), figure.file, figure.caption, index++);
   }
   page << "</div>\n<h2>Metrics per stage</h2>\n" << MetricsTables(report)
-       << "<p>Full data: report.json, fields.vtk (ParaView), fields/*.csv, quads.obj, quads.ply, "
-          "analysis/*.csv.</p>\n</body></html>\n";
+       << "<p>Full data: report.json, "
+       << (std::filesystem::exists(out->Path("fields.vtk")) ? "fields.vtk (ParaView), fields/*.csv, " : "")
+       << "quads.obj, quads.ply, analysis/*.csv.</p>\n</body></html>\n";
   return out->WriteText("report.html", page.str());
 }
 

@@ -97,6 +97,23 @@ TEST(Cli, RunWritesReportAndSurface) {
     EXPECT_EQ(entry.path().filename().string().find(".result.partial"), std::string::npos);
 }
 
+// output.fields: false leaves out the per-element field files (sweeps, 1M-triangle runs) and
+// says so nowhere else: the layout, the report and the figures are all there.
+TEST(Cli, OutputFieldsFalseWritesNoFieldFiles) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "plane.yaml", kPlaneConfig);
+  const Result r = RunPqlayout(dir, "run plane.yaml --out nofields --until extract -q --set output.fields=false");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/nofields/fields"));
+  EXPECT_FALSE(fs::exists(dir + "/nofields/fields.vtk"));
+  EXPECT_TRUE(fs::exists(dir + "/nofields/quads_initial.obj"));
+  EXPECT_TRUE(fs::exists(dir + "/nofields/figures/guidance.svg"));
+  EXPECT_EQ(ReadReport(dir + "/nofields")["config"]["output"]["fields"], false);
+  const std::string html = ReadFile(dir + "/nofields/report.html");
+  EXPECT_EQ(html.find("fields.vtk"), std::string::npos);
+  EXPECT_NE(html.find("quads.obj"), std::string::npos);
+}
+
 TEST(Cli, UntilStopsAfterTheStageAndRemovesStaleOutputs) {
   const auto dir = testing::TempDir();
   testing::WriteFile(dir, "plane.yaml", kPlaneConfig);
