@@ -99,6 +99,7 @@ class Surroundings {
   }
 
   ReferenceBoundary::Location Locate(const Eigen::Vector3d& p) const { return boundary_.Locate(p); }
+  const ReferenceBoundary& boundary() const { return boundary_; }
 
   // Whole turns of the guidance: clusters of singularities (each within 2 h of another) whose
   // indices add up to +1 or more (a crown, a bump top; the discrete field often splits one
@@ -137,10 +138,10 @@ class Surroundings {
 // of the reference boundary (SharpKinkTurn: the chord refinement puts a vertex there, or moves
 // one onto it): both ends → the reference's own segment is that short; one end → the other
 // could not move onto the kink (SlideToKink refused it). "" otherwise.
-std::string KinkNote(const PipelineState& state, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+std::string KinkNote(const PipelineState& state, const ReferenceBoundary& boundary, const Eigen::Vector3d& a,
+                     const Eigen::Vector3d& b) {
   const double h = state.config.layout.spacing;
   const double sharp = SharpKinkTurn(state.config.extract.boundary_tolerance * h, state.config.extract.min_edge * h);
-  const ReferenceBoundary boundary(*state.surface);
   const double at_a = boundary.TurnAt(a, 1e-6 * h), at_b = boundary.TurnAt(b, 1e-6 * h);
   const auto degrees = [](double t) { return Fixed(t * 180.0 / M_PI, 0) + "°"; };
   if (at_a > sharp && at_b > sharp)
@@ -278,7 +279,7 @@ std::string ExtractCause(const std::string& name, const PipelineState& state, co
     std::string why = blocker ? std::string("not collapsed because ") + blocker
                               : "made after the short-edge collapses, by the boundary clean-up or the chord refinement";
     const ReferenceBoundary::Location at = around.Locate(where);
-    const std::string kinks = u >= 0 && !blocker ? KinkNote(state, ToEigen(mesh.point(OpenMesh::VertexHandle(u))),
+    const std::string kinks = u >= 0 && !blocker ? KinkNote(state, around.boundary(), ToEigen(mesh.point(OpenMesh::VertexHandle(u))),
                                                             ToEigen(mesh.point(OpenMesh::VertexHandle(v))))
                                                  : "";
     if (!kinks.empty()) {
