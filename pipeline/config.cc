@@ -270,7 +270,7 @@ KeyTable::KeyTable(Config* c) {
   Number("analysis.section.height", &a.section.height, AtLeast(kMinSection, 100.0), "rectangular hollow: height (along the surface normal), m");
 
   Bool("output.fields", &c->output.fields,
-       "write fields/*.csv and fields.vtk (one row per reference vertex or face: ~150 MB at 1M triangles); false for sweeps");
+       "write fields/*.csv and fields.vtk (one row per reference vertex or face: ~300 MB at 1M triangles); false for sweeps");
 }
 
 int EditDistance(const std::string& a, const std::string& b) {

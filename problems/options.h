@@ -159,7 +159,7 @@ struct SectionOptions {
 // What a run writes besides the layout, the analysis, the figures and the report.
 struct OutputOptions {
   // fields/vertices.csv, fields/faces.csv, fields/levelsets.csv and fields.vtk: per element
-  // of the reference, so ~150 MB at a million triangles; sweeps may not want them.
+  // of the reference, so ~300 MB at a million triangles; sweeps may not want them.
   bool fields = true;
 };
 
