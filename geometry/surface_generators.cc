@@ -225,8 +225,10 @@ void SplitLongEdges(const HeightField& field, double max_length, TriMesh* mesh) 
 
 // Flips interior edge e if its two opposite angles in space sum to more than π (it is not
 // locally Delaunay on the surface: cot α + cot β < 0) and both new triangles are
-// counter-clockwise in the plan.
-bool FlipIfNotDelaunay(EdgeHandle e, TriMesh* mesh) {
+// counter-clockwise in the plan. *blocked: it would have been flipped but OpenMesh refused (the
+// new diagonal's ends are already joined), an answer that depends on edges outside its quad.
+bool FlipIfNotDelaunay(EdgeHandle e, TriMesh* mesh, bool* blocked) {
+  *blocked = false;
   if (mesh->is_boundary(e)) return false;
   const HalfedgeHandle h = mesh->halfedge_handle(e, 0);
   const HalfedgeHandle twin = mesh->halfedge_handle(e, 1);
@@ -241,16 +243,37 @@ bool FlipIfNotDelaunay(EdgeHandle e, TriMesh* mesh) {
   const Eigen::Vector2d pp = PlanPosition(*mesh, p), pq = PlanPosition(*mesh, q);
   const Eigen::Vector2d pa = PlanPosition(*mesh, a), pb = PlanPosition(*mesh, b);
   if (PlanOrientation(pp, pb, pa) <= 0.0 || PlanOrientation(pb, pq, pa) <= 0.0) return false;
-  if (!mesh->is_flip_ok(e)) return false;
+  if (!mesh->is_flip_ok(e)) {
+    *blocked = true;
+    return false;
+  }
   mesh->flip(e);
   return true;
 }
 
+// Sweeps over every edge in index order until a sweep flips none. An edge is tested again
+// only if a flip since its last test changed its quad (the flipped edge and the four around
+// it) or OpenMesh refused its flip: vertices do not move here, so an unchanged quad gives the
+// same answer, and the flips
+// are exactly those of testing every edge in every sweep, in the same order, for a fraction
+// of the cotangents (the 1M-triangle Great Court generator: 15 % of its time was here).
 void FlipToSurfaceDelaunay(TriMesh* mesh) {
   constexpr int kMaxSweeps = 20;  // flips on a curved surface need not settle; bound them
+  std::vector<char> dirty(mesh->n_edges(), 1);
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     int flips = 0;
-    for (EdgeHandle e : mesh->edges()) flips += FlipIfNotDelaunay(e, mesh);
+    for (EdgeHandle e : mesh->edges()) {
+      if (!dirty[e.idx()]) continue;
+      bool blocked = false;
+      const bool flipped = FlipIfNotDelaunay(e, mesh, &blocked);
+      dirty[e.idx()] = blocked;
+      if (!flipped) continue;
+      ++flips;
+      dirty[e.idx()] = 1;
+      for (const HalfedgeHandle h : {mesh->halfedge_handle(e, 0), mesh->halfedge_handle(e, 1)})
+        for (HalfedgeHandle g = mesh->next_halfedge_handle(h); g != h; g = mesh->next_halfedge_handle(g))
+          dirty[mesh->edge_handle(g).idx()] = 1;
+    }
     if (flips == 0) return;
   }
 }
