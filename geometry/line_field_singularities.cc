@@ -9,19 +9,26 @@ std::vector<LineFieldSingularity> FindLineFieldSingularities(const SurfaceModel&
                                                              double min_projected_length) {
   std::vector<LineFieldSingularity> singularities;
   const TriMesh& mesh = surface.mesh();
+  // Each face's doubled top-view angle, once (a vertex's ring visits each face three times);
+  // NaN where the direction is too steep to have one.
+  std::vector<double> face_angle(mesh.n_faces());
+  for (size_t f = 0; f < face_angle.size(); ++f) {
+    const Eigen::Vector2d d = direction[f].head<2>();
+    face_angle[f] = d.norm() < min_projected_length ? std::nan("") : 2.0 * std::atan2(d.y(), d.x());
+  }
+  std::vector<double> doubled;
   for (const auto v : mesh.vertices()) {
     if (mesh.is_boundary(v)) continue;
-    std::vector<double> doubled;
+    doubled.clear();
     bool usable = true;
     int first_face = -1;
     for (const auto f : mesh.vf_ccw_range(v)) {
       if (first_face < 0) first_face = f.idx();
-      const Eigen::Vector2d d = direction[f.idx()].head<2>();
-      if (d.norm() < min_projected_length) {
+      if (std::isnan(face_angle[f.idx()])) {
         usable = false;
         break;
       }
-      doubled.push_back(2.0 * std::atan2(d.y(), d.x()));
+      doubled.push_back(face_angle[f.idx()]);
     }
     if (!usable || doubled.empty()) continue;
     double winding = 0.0;
