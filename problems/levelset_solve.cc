@@ -280,13 +280,15 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
     // A reference much finer than the layout needs: solve on a remeshed copy whose edges are
     // working_edge long (the level lines are h apart; 0.4 h resolves them), then interpolate
     // φ and ψ to the reference's vertices. Stage time then follows h, not the reference size.
+    // Two progress lines: remeshing a million triangles takes ~15 s.
+    LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference
+              << " × working edge " << working_edge << " m: remeshing its " << s.num_faces()
+              << " triangles to a working mesh (CGAL isotropic remeshing, " << kRemeshIterations << " rounds) ...";
     TriMesh working_mesh;
     PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, kRemeshIterations, &working_mesh)
                            .WithContext("levelset working mesh"));
     working = std::make_shared<const SurfaceModel>(std::move(working_mesh));
-    LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference
-              << " × working edge " << working_edge << " m: solving on a remeshed copy with " << working->num_faces()
-              << " triangles";
+    LOG(INFO) << "levelset: solving on the remeshed copy, " << working->num_faces() << " triangles";
     working_guidance = TransferGuidance(s, g, *working);
   }
   solution->caps.clear();
