@@ -254,9 +254,8 @@ bool FlipIfNotDelaunay(EdgeHandle e, TriMesh* mesh, bool* blocked) {
 // Sweeps over every edge in index order until a sweep flips none. An edge is tested again
 // only if a flip since its last test changed its quad (the flipped edge and the four around
 // it) or OpenMesh refused its flip: vertices do not move here, so an unchanged quad gives the
-// same answer, and the flips
-// are exactly those of testing every edge in every sweep, in the same order, for a fraction
-// of the cotangents (the 1M-triangle Great Court generator: 15 % of its time was here).
+// same answer, and the flips are exactly those of testing every edge in every sweep, in the
+// same order, for a fraction of the cotangents (968k-triangle Great Court: 12.5 → 9.4 s).
 void FlipToSurfaceDelaunay(TriMesh* mesh) {
   constexpr int kMaxSweeps = 20;  // flips on a curved surface need not settle; bound them
   std::vector<char> dirty(mesh->n_edges(), 1);

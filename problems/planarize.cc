@@ -221,8 +221,8 @@ void SolveRound(const ExtractedMesh& extracted, const ClosestPointQuery& query, 
   // inexact steps there land elsewhere (CG in every round: a Great Court boundary vertex slid
   // 8.9 m instead of 3.0 and the curvature layout's compliance rose 17 %; lifted 1 m grid
   // closeness 5.5–29 mm depending on η). Measured with planarize_benchmark (issue 19): lifted
-  // 1 m grid 5.8 s → 3.2 s; Great Court at h = 3 m byte-for-byte different but within 1 % in
-  // compliance after stiffen (README, benchmarks/RESULTS.md).
+  // 1 m grid 5.9 s → 2.6 s, closeness 9.4 → 6.6 mm; Great Court at h = 3 m byte-for-byte
+  // different but within 1 % in compliance after stiffen (README, benchmarks/RESULTS.md).
   if (!on_surface) {
     solver_options.linear_solver_type = ceres::CGNR;
     solver_options.preconditioner_type = ceres::JACOBI;
