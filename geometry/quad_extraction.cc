@@ -203,12 +203,10 @@ void CleanUpAndBuild(double min_edge_length, bool pair_boundary_triangles, Polyg
 // The centre vertices SplitLargePolygons added moved from their polygon's centroid onto the
 // surface.
 void PlaceCentreVertices(const SurfaceModel& surface, ExtractedMesh* out) {
-  std::unique_ptr<ClosestPointQuery> query;
   for (size_t v = 0; v < out->origin.size(); ++v) {
     QuadMeshVertex& origin = out->origin[v];
     if (!origin.centre) continue;
-    if (!query) query = std::make_unique<ClosestPointQuery>(surface);
-    const SurfacePoint p = query->OnSurface(ToEigen(out->mesh.point(VertexHandle(v))));
+    const SurfacePoint p = surface.closest_points().OnSurface(ToEigen(out->mesh.point(VertexHandle(v))));
     out->mesh.set_point(VertexHandle(v), ToOpenMesh(p.point));
     origin.face = p.element;
     origin.barycentric = TriangleBarycentric(surface, p.element, p.point);

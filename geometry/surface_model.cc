@@ -1,10 +1,17 @@
 #include "geometry/surface_model.h"
 
+#include "geometry/closest_point.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace pqlayout {
+
+const ClosestPointQuery& SurfaceModel::closest_points() const {
+  if (!closest_points_) closest_points_ = std::make_shared<const ClosestPointQuery>(*this);
+  return *closest_points_;
+}
 
 SurfaceModel::SurfaceModel(TriMesh mesh) : mesh_(std::move(mesh)) {
   ComputeFaceQuantities();

@@ -5,6 +5,7 @@
 // (see VertexField / FaceField), which the field writers export by name.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,8 @@ struct BoundaryLoop {
   Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();  // ½ Σ p_i × p_{i+1}
   bool is_outer = false;  // the loop with the largest |vector area| is the outer one
 };
+
+class ClosestPointQuery;
 
 class SurfaceModel {
  public:
@@ -54,6 +57,12 @@ class SurfaceModel {
   // Boundary vertices where the boundary turns by more than min_turning_angle (radians),
   // e.g. the four corners of the Great Court rectangle.
   std::vector<int> BoundaryCorners(double min_turning_angle) const;
+
+  // Closest points on this surface and its boundary (geometry/closest_point.h), indexed on
+  // first use and then shared by every stage that asks (levelset, extract, planarize,
+  // stiffen): a million triangles take ~1 s to index. Positions never change, so it never goes
+  // stale. Not safe for a concurrent first call; the stages call it from one thread.
+  const ClosestPointQuery& closest_points() const;
 
   Eigen::Vector3d bbox_min() const { return bbox_min_; }
   Eigen::Vector3d bbox_max() const { return bbox_max_; }
@@ -89,6 +98,7 @@ class SurfaceModel {
   std::vector<int> vertex_loop_;
   Eigen::Vector3d bbox_min_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d bbox_max_ = Eigen::Vector3d::Zero();
+  mutable std::shared_ptr<const ClosestPointQuery> closest_points_;
 };
 
 }  // namespace pqlayout

@@ -90,7 +90,7 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
 // every vertex moved to the closest point of the reference (boundary vertices: of its
 // boundary) and its origin re-expressed in the reference's triangles, as if extracted there.
 void OnReference(const SurfaceModel& reference, ExtractedMesh* quads) {
-  const ClosestPointQuery query(reference);
+  const ClosestPointQuery& query = reference.closest_points();
   for (const auto v : quads->mesh.vertices()) {
     QuadMeshVertex& origin = quads->origin[v.idx()];
     Eigen::Vector3d p = ToEigen(quads->mesh.point(v));

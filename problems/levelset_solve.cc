@@ -21,7 +21,7 @@ namespace levelset_internal {
 // The guidance on the working mesh: each working face takes the direction (projected into
 // its plane) and weight of the reference face closest to its centroid.
 GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceField& g, const SurfaceModel& working) {
-  const ClosestPointQuery query(reference);
+  const ClosestPointQuery& query = reference.closest_points();
   GuidanceField out;
   out.scale = g.scale;
   for (int f = 0; f < working.num_faces(); ++f) {
@@ -235,7 +235,7 @@ Status SolveOnWorking(const SurfaceModel& s, std::shared_ptr<const SurfaceModel>
   // the per-vertex φ, ψ interpolated below (first copies) are for the field files only.
   if (options.seams) PQ_RETURN_IF_ERROR(SolveWithSeams(*working, working_guidance, options, h, &coarse));
   else PQ_RETURN_IF_ERROR(SolveOnMesh(*working, working_guidance, options, h, nullptr, &coarse));
-  const ClosestPointQuery query(*working);
+  const ClosestPointQuery& query = working->closest_points();
   solution->phi.assign(s.num_vertices(), 0.0);
   solution->psi.assign(s.num_vertices(), 0.0);
   for (int v = 0; v < s.num_vertices(); ++v) {

@@ -256,7 +256,7 @@ void MeasureDisplacement(const PolyMesh& mesh, const std::vector<Eigen::Vector3d
 Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double h, ExtractedMesh* extracted,
                      PlanarizeReport* report) {
   PolyMesh& mesh = extracted->mesh;
-  const ClosestPointQuery query(reference);
+  const ClosestPointQuery& query = reference.closest_points();
   PlanarizeData data = PrepareData(*extracted, query, h);
   const auto& w = options.weights;
   // Weights (config values scale these): the residuals are all dimensionless (δ, metres / h),

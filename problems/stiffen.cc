@@ -419,7 +419,7 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
     report->kink_mean_deg_before += k / kinks.size(), report->kink_max_deg_before = std::max(report->kink_max_deg_before, k);
   std::vector<Vec3> x0(mesh->mesh.n_vertices());
   for (const auto v : mesh->mesh.vertices()) x0[v.idx()] = ToEigen(mesh->mesh.point(v));
-  const ClosestPointQuery query(reference);
+  const ClosestPointQuery& query = reference.closest_points();
   GridFrame frame;
   BuildGridFrame(mesh->mesh, restraints, analysis, &frame);
   StiffenProblem P;
