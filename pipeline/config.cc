@@ -215,7 +215,8 @@ KeyTable::KeyTable(Config* c) {
   Number("levelset.min_angle", &c->levelset.min_angle, Range{0.0, 90.0, true, true}, "minimum crossing angle of the two families, degrees");
   Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000, "Ceres iterations of the φ solve and of the ψ solve");
   Integer("levelset.joint_iterations", &c->levelset.joint_iterations, 0, 100000,
-          "Ceres iterations of the final solve of φ and ψ together (0: none)");
+          "Ceres iterations of the final solve of φ and ψ together, at most (0: none; past 100 it "
+          "also ends once 24 iterations lowered its cost by less than 0.5 %)");
   Integer("levelset.crossing_rounds", &c->levelset.crossing_rounds, 0, 100,
           "local re-solves after it that raise transversality on the faces still crossing below levelset.min_angle (0: none)");
   Bool("levelset.seams", &c->levelset.seams,

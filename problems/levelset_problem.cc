@@ -264,7 +264,7 @@ Status LevelSetProblem::SolveJoint() {
   AddPsiTerms(&problem);
   HoldTips(&problem);
   PQ_RETURN_IF_ERROR(
-      levelset_internal::Solve("joint", options_.joint_iterations, &problem, &solution_->solver["joint"]));
+      levelset_internal::Solve("joint", options_.joint_iterations, &problem, &solution_->solver["joint"], true));
   Project();
   return Status::Ok();
 }

@@ -24,6 +24,7 @@
 #include "problems/structural_checks.h"
 #include "solver/ceres_options.h"
 #include "solver/cholmod_solver.h"
+#include "solver/cost_window.h"
 
 namespace pqlayout {
 
@@ -250,11 +251,8 @@ class Progress final : public ceres::IterationCallback {
                 << F_.last_ratio() << ", " << manifold_.active() << " planarity constraints active";
     if (s.iteration == 0) run_first_ = s.cost;
     run_last_ = s.cost;
-    if (s.iteration == 0 && !costs_.empty()) return ceres::SOLVER_CONTINUE;  // the last run's end again
-    costs_.push_back(s.cost);
-    if (static_cast<int>(costs_.size()) <= kWindow) return ceres::SOLVER_CONTINUE;
-    costs_.pop_front();
-    if (costs_.front() - costs_.back() >= kWindowGain * costs_.back()) return ceres::SOLVER_CONTINUE;
+    if (s.iteration == 0 && !window_.empty()) return ceres::SOLVER_CONTINUE;  // the last run's end again
+    if (!window_.AddAndCheckStalled(s.cost)) return ceres::SOLVER_CONTINUE;
     converged_ = true;
     return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
   }
@@ -269,7 +267,7 @@ class Progress final : public ceres::IterationCallback {
   const PlanarityManifold& manifold_;
   int offset_ = 0;
   double run_first_ = 0.0, run_last_ = 0.0;
-  std::deque<double> costs_;
+  CostWindow window_{kWindow, kWindowGain};
   bool converged_ = false;
 };
 
