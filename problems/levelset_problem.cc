@@ -35,6 +35,11 @@ constexpr double kCrossingMargin = 1.5;  // degrees the hinge is raised by in th
 constexpr double kCrossingBoost = 4.0;   // weight factor per round on a failing face
 constexpr int kPhiRings = 1, kPsiRings = 3;
 constexpr int kCrossingIterations = 30;  // Ceres iterations per round
+// The rounds also end after kCrossingPatience rounds in a row that did not reach the best
+// state (CrossingRounds): the boost has then grown ×64 on faces that did not respond. On the
+// corpus no round after three such ones ever became the best (wavy × strain, whose crossing
+// target cannot be met: none of its 10 rounds did; they were ~5 s of its run).
+constexpr int kCrossingPatience = 3;
 
 // Marks the failing faces (see above), multiplies their boost and returns how many faces
 // cross below min_angle (0: nothing to do). live_phi / live_psi: the vertices free to move.
@@ -279,7 +284,7 @@ Status LevelSetProblem::SolveJoint() {
 Status LevelSetProblem::CrossingRounds() {
   LevelSetMetrics best = Measure();
   std::vector<double> best_phi = phi_, best_psi = psi_;
-  for (int round = 0; round < options_.crossing_rounds; ++round) {
+  for (int round = 0, since_best = 0; round < options_.crossing_rounds && since_best < kCrossingPatience; ++round) {
     std::vector<char> live_phi, live_psi;
     if (RaiseCrossings(s_, geo_, phi_, psi_, min_angle_, &boost_, &live_phi, &live_psi) == 0) break;
     for (int v = 0; v < s_.num_vertices(); ++v) {  // a live plus copy frees its parameter
@@ -304,6 +309,9 @@ Status LevelSetProblem::CrossingRounds() {
       best = now;
       best_phi = phi_;
       best_psi = psi_;
+      since_best = 0;
+    } else {
+      ++since_best;
     }
   }
   phi_ = best_phi;  // a round may pass through worse states (more faces below) on its way
