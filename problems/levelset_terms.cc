@@ -46,12 +46,14 @@ constexpr double kStallGain = 0.005;
 class StallStop : public ceres::IterationCallback {
  public:
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
-    const bool stalled = window_.AddAndCheckStalled(it.cost);
-    return stalled && it.iteration >= kStallFrom ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
+    fired_ = window_.AddAndCheckStalled(it.cost) && it.iteration >= kStallFrom;
+    return fired_ ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
   }
+  bool fired() const { return fired_; }
 
  private:
   CostWindow window_{kStallWindow, kStallGain};
+  bool fired_ = false;
 };
 
 nlohmann::json SummaryJson(const ceres::Solver::Summary& s) {
@@ -74,11 +76,17 @@ Status Solve(const std::string& name, int max_iterations, ceres::Problem* proble
   ceres::Solver::Summary result;
   ceres::Solve(options, problem, &result);
   *summary = SummaryJson(result);
+  if (stall.fired()) {  // say why in report.json instead of Ceres' "User callback returned …"
+    (*summary)["termination"] = "STALLED";
+    (*summary)["message"] = "stalled: the last " + std::to_string(kStallWindow - 1) +
+                            " iterations lowered the cost by less than 0.5 %";
+  }
   VLOG(1) << "levelset: " << name << ":\n" << result.FullReport();
   if (!result.IsSolutionUsable()) return Status::Internal("levelset: Ceres failed on " + name + ": " + result.message);
   LOG(INFO) << "levelset: " << name << ": " << result.iterations.size() - 1 << " iterations, cost "
             << result.initial_cost << " → " << result.final_cost << " ("
-            << ceres::TerminationTypeToString(result.termination_type) << ", " << result.total_time_in_seconds << " s)";
+            << (stall.fired() ? "STALLED" : ceres::TerminationTypeToString(result.termination_type)) << ", "
+            << result.total_time_in_seconds << " s)";
   return Status::Ok();
 }
 

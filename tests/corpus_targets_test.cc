@@ -107,6 +107,8 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   const bool pole = c.source == "strain" && (c.roof == "dome_circular" || c.roof == "dome_square");
   if (pole) EXPECT_EQ(stages.at("levelset").at("poles").size(), 1u);
   if (c.roof == "wavy" && c.source == "curvature") EXPECT_EQ(stages.at("levelset").at("poles").size(), 3u);
+  if (c.roof == "dome_circular" && c.source == "curvature")  // its joint solve crawls: cut at 100 iterations
+    EXPECT_EQ(stages.at("levelset").at("ceres").at("joint").at("termination"), "STALLED");
   if (c.roof == "wavy" && c.source == "strain") {  // no crossing round reaches a better state: three run, not ten
     EXPECT_TRUE(stages.at("levelset").at("ceres").contains("crossing_round_3"));
     EXPECT_FALSE(stages.at("levelset").at("ceres").contains("crossing_round_4"));
