@@ -1,10 +1,10 @@
 #include "geometry/surface_model.h"
 
-#include "geometry/closest_point.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "geometry/closest_point.h"
 
 namespace pqlayout {
 

@@ -3,6 +3,7 @@
 
 #include <glog/logging.h>
 
+#include "base/format_number.h"
 #include "problems/residuals/smoothness_residual.h"
 #include "problems/residuals/spacing_residual.h"
 #include "solver/affine_mapped_cost.h"
@@ -78,8 +79,9 @@ Status Solve(const std::string& name, int max_iterations, ceres::Problem* proble
   *summary = SummaryJson(result);
   if (stall.fired()) {  // say why in report.json instead of Ceres' "User callback returned …"
     (*summary)["termination"] = "STALLED";
-    (*summary)["message"] = "stalled: the last " + std::to_string(kStallWindow - 1) +
-                            " iterations lowered the cost by less than 0.5 %";
+    std::string message = "stalled: the last " + std::to_string(kStallWindow - 1) + " iterations lowered the cost by less than ";
+    AppendNumber(&message, 100.0 * kStallGain, 6);
+    (*summary)["message"] = message + " %";
   }
   VLOG(1) << "levelset: " << name << ":\n" << result.FullReport();
   if (!result.IsSolutionUsable()) return Status::Internal("levelset: Ceres failed on " + name + ": " + result.message);
