@@ -10,6 +10,7 @@
 
 #include "geometry/planar_domain_mesher.h"
 #include "base/status.h"
+#include "geometry/mesh.h"
 #include "geometry/surface_generators.h"
 
 namespace pqlayout {
@@ -18,6 +19,12 @@ struct HeightField {
   std::vector<DomainLoop> domain;
   std::function<double(double, double)> height;
 };
+
+// Meshes the domain at edge_length (MeshPlanarDomain), lifts every vertex to z = height(x, y)
+// and remeshes on the surface (edge splits, Delaunay flips, tangential smoothing; boundary
+// vertices never move), so that edge length and angles hold in space. Counter-clockwise plan
+// triangles: normals point up. MeshPlanarDomain's errors as they are (the caller names its key).
+Status MeshHeightField(const HeightField& field, double edge_length, TriMesh* mesh);
 
 inline Status RequirePositive(double value, const std::string& key) {
   if (std::isfinite(value) && value > 0.0) return Status::Ok();

@@ -356,6 +356,15 @@ const std::vector<std::string>& GeneratorNames() {
   return names;
 }
 
+Status MeshHeightField(const HeightField& field, double edge_length, TriMesh* mesh) {
+  PlanarTriangulation plan;
+  PQ_RETURN_IF_ERROR(MeshPlanarDomain(field.domain, edge_length, &plan));
+  LiftToMesh(plan, field, mesh);
+  RemeshOnSurface(field, edge_length, mesh);
+  mesh->update_face_normals();
+  return Status::Ok();
+}
+
 Status GenerateSurface(const GeneratorParams& params, TriMesh* mesh) {
   const Generator* generator = FindGenerator(params.name);
   if (generator == nullptr) {
@@ -365,13 +374,7 @@ Status GenerateSurface(const GeneratorParams& params, TriMesh* mesh) {
   PQ_RETURN_IF_ERROR(RequirePositive(params.edge_length, "surface.edge_length"));
   HeightField field;
   PQ_RETURN_IF_ERROR(generator->build(params, &field));
-  PlanarTriangulation plan;
-  PQ_RETURN_IF_ERROR(
-      MeshPlanarDomain(field.domain, params.edge_length, &plan).WithContext("surface.edge_length"));
-  LiftToMesh(plan, field, mesh);
-  RemeshOnSurface(field, params.edge_length, mesh);
-  mesh->update_face_normals();
-  return Status::Ok();
+  return MeshHeightField(field, params.edge_length, mesh).WithContext("surface.edge_length");
 }
 
 }  // namespace pqlayout

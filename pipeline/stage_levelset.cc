@@ -42,6 +42,7 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   (*metrics)["initial_guess"] = solution.initial.ToJson();
   (*metrics)["ceres"] = solution.solver;
   (*metrics)["working_mesh_triangles"] = solution.working_faces;
+  (*metrics)["working_mesh"] = solution.working_mesh;
   (*metrics)["density_scale"] = density_scale;
   (*metrics)["seams"] = solution.seams.ToJson();
   nlohmann::json poles = nlohmann::json::array();

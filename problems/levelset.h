@@ -17,6 +17,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -80,6 +81,7 @@ struct LevelSetSolution {
   LevelSetMetrics metrics;       // of the result
   nlohmann::json solver;         // Ceres summaries of the solves
   int working_faces = 0;         // triangles of the mesh the solve ran on
+  std::string working_mesh = "reference";  // how that mesh was made (report.json's working_mesh)
   // The remeshed working mesh when the solve ran on one (null: on the reference), with φ, ψ
   // per vertex there (without seams; with seams they are phi_cut / psi_cut on its cut):
   // extraction traces the level lines on the mesh they are piecewise linear on.

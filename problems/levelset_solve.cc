@@ -10,6 +10,7 @@
 
 #include "geometry/closest_point.h"
 #include "geometry/line_field_singularities.h"
+#include "geometry/plan_remesh.h"
 #include "geometry/remesh.h"
 
 namespace pqlayout {
@@ -45,6 +46,13 @@ constexpr double kWorkingCornerAngle = 30.0;  // corners the working mesh keeps 
 constexpr double kReuseReference = 0.7;       // solve on the reference if its mean edge ≥ this × working edge
 constexpr double kDefaultWorkingEdge = 0.4;   // × h: CGAL lands near 12k triangles on the Great Court at h = 3 m
 constexpr int kRemeshIterations = 3;
+// References with at least this many triangles get their working mesh from the plan when they
+// are height fields (plan_remesh.h): CGAL's remeshing of the whole reference costs ~7 µs per
+// triangle (1.5 s here, 22–28 s at 1M). Below it CGAL's remeshing stays: on the corpus roofs
+// (8k triangles) the plan path gave 36 misses instead of 33 (interior non-quads on the saddle
+// 0 → 8, the hypar 0 → 2, the square dome under strain 3 → 9; quads of the square dome under
+// curvature 1.0 → 0.83), a cause not found yet (benchmarks/RESULTS.md, 2026-12-03).
+constexpr int kPlanFromTriangles = 200000;
 constexpr double kCancelDistance = 2.0;  // × h: two ±½ singularities closer than this get no seam
 constexpr double kPoleGain = 0.75;      // poles are kept if they align to below this × the layout without
 constexpr double kPoleTryAbove = 8.0;  // °: poles are tried only if the layout without aligns worse, or folds over
@@ -276,17 +284,30 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   const double reference_edge = MeanEdgeLength(s.mesh());
   std::shared_ptr<const SurfaceModel> working;
   GuidanceField working_guidance;
+  std::string working_kind = "reference";
   if (reference_edge < kReuseReference * working_edge) {
     // A reference much finer than the layout needs: solve on a remeshed copy whose edges are
     // working_edge long (the level lines are h apart; 0.4 h resolves them), then interpolate
     // φ and ψ to the reference's vertices. Stage time then follows h, not the reference size.
-    // Two progress lines: remeshing a million triangles takes ~15 s.
-    LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference
-              << " × working edge " << working_edge << " m: remeshing its " << s.num_faces()
-              << " triangles to a working mesh (CGAL isotropic remeshing, " << kRemeshIterations << " rounds) ...";
+    // A large height-field reference is meshed anew in the plan (plan_remesh.h, < 0.5 s at 1M
+    // triangles); any other goes through CGAL's isotropic remeshing (~25 s at 1M), with a
+    // progress line first.
     TriMesh working_mesh;
-    PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, kRemeshIterations, &working_mesh)
-                           .WithContext("levelset working mesh"));
+    std::string why_not = "fewer than " + std::to_string(kPlanFromTriangles) + " triangles";
+    if (s.num_faces() >= kPlanFromTriangles &&
+        RemeshOverPlan(s, working_edge, kWorkingCornerAngle, &working_mesh, &why_not)) {
+      LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference
+                << " × working edge " << working_edge << " m: its plan meshed anew as a working mesh";
+      working_kind = "plan";
+    } else {
+      LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference
+                << " × working edge " << working_edge << " m: remeshing its " << s.num_faces()
+                << " triangles to a working mesh (CGAL isotropic remeshing, " << kRemeshIterations
+                << " rounds; not from the plan: " << why_not << ") ...";
+      PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, kRemeshIterations, &working_mesh)
+                             .WithContext("levelset working mesh"));
+      working_kind = "CGAL remeshing (not from the plan: " + why_not + ")";
+    }
     working = std::make_shared<const SurfaceModel>(std::move(working_mesh));
     LOG(INFO) << "levelset: solving on the remeshed copy, " << working->num_faces() << " triangles";
     working_guidance = TransferGuidance(s, g, *working);
@@ -294,6 +315,7 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   solution->caps.clear();
   solution->rejected_poles = nlohmann::json();
   const auto plain = [&](LevelSetSolution* out) {
+    out->working_mesh = working_kind;
     if (working) return SolveOnWorking(s, working, working_guidance, options, h, out);
     out->working_faces = s.num_faces();
     if (options.seams) return SolveWithSeams(s, g, options, h, out);
@@ -329,6 +351,7 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
               << "): trying a pole, its cap " << c.radius << " m in radius left out of the solve";
   LevelSetSolution with_poles;
   PQ_RETURN_IF_ERROR(SolveOnWorking(s, holed, holed_guidance, options, h, &with_poles, true));
+  with_poles.working_mesh = working_kind;
   const LevelSetMetrics& a = with_poles.metrics;
   const bool better = a.alignment_rms_deg_strong < kPoleGain * b.alignment_rms_deg_strong && a.foldovers <= b.foldovers;
   LOG(INFO) << "levelset: with " << caps.size() << " pole(s) alignment " << a.alignment_rms_deg_strong << "° where weight > 0.5 ("

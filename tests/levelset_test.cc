@@ -76,6 +76,42 @@ TEST(LevelSets, FineReferenceIsSolvedOnAWorkingMeshAndInterpolated) {
   }
   EXPECT_LE(worst_phi, 1e-2);  // in units of level lines: 1 % of h over a 12 m square
   EXPECT_LE(worst_psi, 1e-2);
+  EXPECT_EQ(solution.working_mesh, "CGAL remeshing (not from the plan: fewer than 200000 triangles)");
+}
+
+// A height field of more than 200k triangles gets its working mesh from the plan
+// (plan_remesh.h), and φ is as exact.
+TEST(LevelSets, LargeHeightFieldIsSolvedOnAWorkingMeshFromItsPlan) {
+  const SurfaceModel s(Plane(12.0, 0.035));
+  const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d&) { return Eigen::Vector3d::UnitX(); });
+  LevelSetSolution solution;
+  ASSERT_TRUE(SolveLevelSets(s, g, LevelsetOptions(), 1.5, &solution).ok());
+  EXPECT_GT(s.num_faces(), 200000);
+  EXPECT_EQ(solution.working_mesh, "plan");
+  EXPECT_LT(solution.working_faces, 1500);
+  EXPECT_LE(solution.metrics.alignment_rms_deg, 0.1);
+  EXPECT_LE(solution.metrics.spacing_cv_phi, 1e-3);
+}
+
+// The same large square stood up at 85° is no height field (plan_remesh.h declines faces
+// steeper than 80°): the working mesh comes from CGAL's remeshing of the reference.
+TEST(LevelSets, LargeReferenceThatIsNoHeightFieldIsRemeshedByCgal) {
+  TriMesh mesh = Plane(12.0, 0.035);
+  const double c = std::cos(85.0 * M_PI / 180.0), sn = std::sin(85.0 * M_PI / 180.0);
+  for (const auto v : mesh.vertices()) {
+    const auto p = mesh.point(v);
+    mesh.set_point(v, TriMesh::Point(c * p[0], p[1], sn * p[0]));
+  }
+  const SurfaceModel s(std::move(mesh));
+  const GuidanceField g = UniformGuidance(s, [&](const Eigen::Vector3d&) { return Eigen::Vector3d(c, 0.0, sn); });
+  LevelSetSolution solution;
+  ASSERT_TRUE(SolveLevelSets(s, g, LevelsetOptions(), 1.5, &solution).ok());
+  EXPECT_EQ(solution.working_mesh.rfind("CGAL remeshing (not from the plan: a face is steeper than 80°", 0), 0u)
+      << solution.working_mesh;
+  EXPECT_LT(solution.working_faces, s.num_faces() / 8);
+  EXPECT_GT(solution.working_faces, 100);
+  EXPECT_LE(solution.metrics.alignment_rms_deg, 0.1);
+  EXPECT_LE(solution.metrics.spacing_cv_phi, 1e-3);
 }
 
 TEST(LevelSets, TranslationalSurfaceGivesTheConjugateParameterLines) {
