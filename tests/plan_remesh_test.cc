@@ -10,6 +10,7 @@
 
 #include "geometry/closest_point.h"
 #include "geometry/plan_remesh.h"
+#include "geometry/planar_domain_mesher.h"
 #include "geometry/remesh.h"
 #include "geometry/surface_generators.h"
 #include "geometry/surface_model.h"
@@ -118,6 +119,30 @@ TEST(PlanRemesh, DeclinesARampThatWindsOverItself) {
   EXPECT_FALSE(RemeshOverPlan(reference, 1.0, 30.0, &working, &why_not));
   EXPECT_FALSE(why_not.empty());
   std::cout << "ramp declined: " << why_not << "\n";
+}
+
+// A roof whose plan has a 10° corner (a wedge, fine reference from the same plan mesher):
+// the plan mesher must end (CGAL's refinement leaves the small input angle alone).
+TEST(PlanRemesh, EndsOnASharpCorner) {
+  DomainLoop wedge;
+  const double apex = 10.0 * M_PI / 180.0;
+  wedge.polygon = {{0.0, 0.0}, {30.0, 0.0}, {30.0 * std::cos(apex), 30.0 * std::sin(apex)}};
+  PlanarTriangulation plan;
+  ASSERT_TRUE(MeshPlanarDomain({wedge}, 0.3, &plan).ok());
+  PolygonSoup soup;
+  for (const Eigen::Vector2d& p : plan.points) soup.points.emplace_back(p.x(), p.y(), 0.01 * p.squaredNorm());
+  for (const auto& t : plan.triangles) soup.faces.push_back({t[0], t[1], t[2]});
+  const SurfaceModel reference(testing::ToMesh(soup));
+  TriMesh working;
+  std::string why_not;
+  ASSERT_TRUE(RemeshOverPlan(reference, 1.5, 5.0, &working, &why_not)) << why_not;
+  double nearest = 1e9;
+  for (const auto v : working.vertices()) nearest = std::min(nearest, ToEigen(working.point(v)).head<2>().norm());
+  // CGAL's remeshing cuts the tip of so sharp a corner, here or on the reference itself
+  // (RemeshIsotropic of the reference: 1.97 m, this path 2.59 m, at a 1.5 m edge; noted in
+  // RESULTS.md, not fixed): the apex within two edges, the area within 1 %.
+  EXPECT_LT(nearest, 3.0);
+  EXPECT_NEAR(Area(working), reference.total_area(), 1e-2 * reference.total_area());
 }
 
 }  // namespace
