@@ -25,7 +25,7 @@ constexpr int kRemeshRounds = 3;            // CGAL isotropic remeshing rounds o
 double Cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
 
 // The reference's triangles in the plan, bucketed in a uniform grid (compressed rows: a
-// million triangles in ~0.3 s and ~40 MB). Height(x, y) interpolates z in the triangle under
+// million triangles in well under a second, ~20 MB). Height(x, y) interpolates z in the triangle under
 // (x, y), or on the nearest triangle if none is (a point a few millimetres outside the plan
 // boundary, on a chord of a concave stretch). The caller has made sure that no two triangles
 // overlap in the plan (LoopsAreSimple, PlanOrientationOfFaces).
@@ -261,11 +261,14 @@ bool RemeshOverPlan(const SurfaceModel& surface, double edge_length, double corn
   field.height = [&locator](double x, double y) { return locator.Height(x, y); };
   TriMesh lifted;
   const Status meshed = MeshHeightField(field, kPlanEdge * edge_length, &lifted);
-  if (!meshed.ok()) *why_not = "its plan domain cannot be meshed: " + meshed.message();
-  if (!meshed.ok()) return false;
-  // The lifted plan mesh is Delaunay with angles ≥ 20°; the level sets cross more steeply on
-  // CGAL's near-equilateral triangles: CGAL's remeshing gets this small mesh (~0.3 s at 12k
-  // triangles) and each vertex is then put back on the reference (CGAL projects onto its
+  if (!meshed.ok()) {
+    *why_not = "its plan domain cannot be meshed: " + meshed.message();
+    return false;
+  }
+  // The lifted plan mesh is Delaunay with angles ≥ 20°; CGAL's remeshing of it (~0.3 s at 12k
+  // triangles) gives the near-equilateral, mostly valence-6 kind of mesh the solve had before
+  // (the level sets on either kind draw from the same distribution: benchmarks/RESULTS.md,
+  // 2026-12-03). Each vertex is then put back on the reference (CGAL projects onto its
   // input, here a chord surface).
   const SurfaceModel plan_model(std::move(lifted));
   const Status remeshed = RemeshIsotropic(plan_model, edge_length, corner_angle_deg, kRemeshRounds, out);
