@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/planar_domain_mesher.h"
 #include "base/status.h"
 #include "geometry/mesh.h"
+#include "geometry/planar_domain_mesher.h"
 #include "geometry/surface_generators.h"
 
 namespace pqlayout {
