@@ -219,7 +219,9 @@ KeyTable::KeyTable(Config* c) {
           "also ends once 24 iterations lowered its cost by less than 0.5 %)");
   Integer("levelset.crossing_rounds", &c->levelset.crossing_rounds, 0, 100,
           "local re-solves after it that raise transversality on the faces still crossing below levelset.min_angle, "
-          "at most (0: none; they also end after 3 rounds in a row that do not reach the best state)");
+          "at most (0: none; they also end after 3 rounds in a row that do not reach the best state); if they "
+          "leave a fold-over or a face more than 5° below min_angle, as many floor rounds (a barrier under the "
+          "worst face) and again crossing rounds over that floor, and the better end is kept");
   Bool("levelset.seams", &c->levelset.seams,
        "cut seams from the guidance's ±½ singularities and from holes to the boundary; φ, ψ jump by whole levels "
        "across them (branch points, as in the paper's curvature reference); false: single-valued φ, ψ");

@@ -13,7 +13,9 @@
 // layout gets branch points like the paper's curvature reference.
 // Solves: φ alone, ψ with φ held, both together, then up to levelset.crossing_rounds local
 // re-solves with the transversality weight raised on the faces still crossing below
-// levelset.min_angle (the hinge is a penalty and loses a few percent of faces otherwise).
+// levelset.min_angle (the hinge is a penalty and loses a few percent of faces otherwise);
+// where those end with a fold-over or a face more than 5° short of min_angle, floor rounds
+// (a barrier under the worst face) from the joint solve's end instead, if they end better.
 #pragma once
 
 #include <memory>
@@ -82,6 +84,10 @@ struct LevelSetSolution {
   nlohmann::json solver;         // Ceres summaries of the solves
   int working_faces = 0;         // triangles of the mesh the solve ran on
   std::string working_mesh = "reference";  // how that mesh was made (report.json's working_mesh)
+  // Which re-solves for the crossing angle the result comes from: "none" (none needed or
+  // levelset.crossing_rounds 0), "boost" (the crossing rounds), "floor" (the floor rounds,
+  // tried when the crossing rounds end with a fold-over or below min_angle, and better).
+  std::string crossing_rounds_kept = "none";
   // The remeshed working mesh when the solve ran on one (null: on the reference), with φ, ψ
   // per vertex there (without seams; with seams they are phi_cut / psi_cut on its cut):
   // extraction traces the level lines on the mesh they are piecewise linear on.

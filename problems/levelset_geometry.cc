@@ -65,5 +65,29 @@ std::vector<InteriorEdge> InteriorEdges(const SurfaceModel& s, const LevelSetGeo
 }
 
 
+std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeometry& geo, const SeamCut& cut) {
+  std::vector<SeamEdgeTerm> terms;
+  for (const auto& e : cut.seam_edges()) {
+    const auto ids_f = s.face_vertices(e.minus_face), ids_g = s.face_vertices(e.plus_face);
+    const TriMesh& m = s.mesh();
+    const auto h = m.halfedge_handle(EdgeHandle(e.cut_edge_minus), 0);
+    const int a = cut.original_vertex(m.from_vertex_handle(h).idx()), b = cut.original_vertex(m.to_vertex_handle(h).idx());
+    SeamEdgeTerm t;
+    t.path = e.path;
+    t.i_minus = t.j_minus = t.k = t.i_plus = t.j_plus = t.l = -1;
+    for (int c = 0; c < 3; ++c) {
+      const int of = cut.original_vertex(ids_f[c]), og = cut.original_vertex(ids_g[c]);
+      (of == a ? t.i_minus : of == b ? t.j_minus : t.k) = ids_f[c];
+      (og == a ? t.i_plus : og == b ? t.j_plus : t.l) = ids_g[c];
+    }
+    t.Gf = OrderedBasis(geo, s, e.minus_face, {t.i_minus, t.j_minus, t.k});
+    t.Gg = OrderedBasis(geo, s, e.plus_face, {t.i_plus, t.j_plus, t.l});
+    t.area = (s.face_area(e.minus_face) + s.face_area(e.plus_face)) / 3.0;
+    t.distance = (geo.centroid[e.minus_face] - geo.centroid[e.plus_face]).norm();
+    terms.push_back(t);
+  }
+  return terms;
+}
+
 }  // namespace levelset_internal
 }  // namespace pqlayout

@@ -248,5 +248,32 @@ std::vector<Eigen::Vector3d> ConjugateTargets(const SurfaceModel& s, const Level
 }
 
 
+// The initial guess (seams: null, or with the seams' transitions; their offsets are set here):
+// φ from the oriented cross field (weak pull where the guidance is weak),
+// then ψ from the conjugate direction of φ's level lines.
+Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<InteriorEdge>& edges,
+                    const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams,
+                    LevelSetSolution* solution) {
+  const double min_angle = options.min_angle / kDegrees;
+  std::vector<Eigen::Vector3d> target = OrientedCrossField(s, g);
+  for (auto& t : target) t /= h;
+  std::vector<double> omega(s.num_faces());
+  for (int f = 0; f < s.num_faces(); ++f) omega[f] = std::max(g.weight[f], 0.05);
+  if (seams != nullptr) {
+    // On the cut surface the oriented field (`target`, from which SolveWithSeams took the
+    // signs) has no hidden branch cut left: the Poisson fit with the seams' transitions is
+    // the guess (the eigenvector below is for a single-valued φ).
+    seams->phi_offset.assign(seams->cut->num_paths(), 0.0);
+    seams->psi_offset.assign(seams->cut->num_paths(), 0.0);
+    PQ_RETURN_IF_ERROR(SeamedPoissonFit(s, geo, target, omega, h, 0, seams, &solution->phi));
+    return SeamedPoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
+                            std::vector<double>(s.num_faces(), 1.0), h, 1, seams, &solution->psi);
+  }
+  PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, omega, &solution->phi));
+  PQ_RETURN_IF_ERROR(SmallestEigenvector(s, geo, g, edges, h, options.weights, &solution->phi));
+  return PoissonFit(s, geo, ConjugateTargets(s, geo, solution->phi, h, min_angle),
+                    std::vector<double>(s.num_faces(), 1.0), &solution->psi);
+}
+
 }  // namespace levelset_internal
 }  // namespace pqlayout

@@ -50,11 +50,21 @@ struct Chart {
   Scalar At(int v) const { return map.empty() ? Scalar{v} : map[v]; }
 };
 
+// A seam edge as the seam smoothness term sees it (cut vertex ids): i, j, k in the minus face
+// f, i, j, l in the plus face g (i, j the same original vertices).
+struct SeamEdgeTerm {
+  int path;
+  int i_minus, j_minus, k, i_plus, j_plus, l;
+  Eigen::Matrix3d Gf, Gg;
+  double area, distance;
+};
+
 // levelset_geometry.cc
 LevelSetGeometry Precompute(const SurfaceModel& surface);
 Eigen::Vector3d Gradient(const LevelSetGeometry& geo, const SurfaceModel& s, int f, const std::vector<double>& u);
 Eigen::Matrix3d OrderedBasis(const LevelSetGeometry& geo, const SurfaceModel& s, int f, const std::array<int, 3>& order);
 std::vector<InteriorEdge> InteriorEdges(const SurfaceModel& s, const LevelSetGeometry& geo);
+std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeometry& geo, const SeamCut& cut);
 
 // levelset_initial.cc
 std::vector<Eigen::Vector3d> OrientedCrossField(const SurfaceModel& s, const GuidanceField& g);
@@ -67,6 +77,7 @@ void AddFaceForm(const Eigen::Vector3d& a, const std::array<int, 3>& ids, double
 Eigen::SparseMatrix<double> AlignmentSmoothnessForm(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g, const std::vector<InteriorEdge>& edges, double h, const LevelsetWeights& w);
 Status SmallestEigenvector(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g, const std::vector<InteriorEdge>& edges, double h, const LevelsetWeights& w, std::vector<double>* phi);
 std::vector<Eigen::Vector3d> ConjugateTargets(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<double>& phi, double h, double min_angle);
+Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<InteriorEdge>& edges, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams, LevelSetSolution* solution);
 
 // levelset_terms.cc
 // One Ceres solve of at most max_iterations, logged under name; stop_on_stall: also end once
@@ -83,7 +94,6 @@ void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, do
 LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g, const std::vector<double>& phi, const std::vector<double>& psi, double min_angle_deg);
 
 // levelset_problem.cc
-Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<InteriorEdge>& edges, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams, LevelSetSolution* solution);
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams, LevelSetSolution* solution);
 
 // levelset_solve.cc

@@ -262,6 +262,7 @@ Status SolveOnWorking(const SurfaceModel& s, std::shared_ptr<const SurfaceModel>
   solution->initial = coarse.initial;
   solution->metrics = coarse.metrics;
   solution->solver = coarse.solver;
+  solution->crossing_rounds_kept = coarse.crossing_rounds_kept;
   solution->working_faces = working->num_faces();
   solution->seams = std::move(coarse.seams);  // with the counters of the seams not cut
   solution->working = working;

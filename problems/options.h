@@ -95,7 +95,7 @@ struct LevelsetOptions {
   double min_angle = 30.0;  // minimum crossing angle of the two families, degrees
   int max_iterations = 50;    // Ceres iterations of the φ solve and of the ψ solve
   int joint_iterations = 300; // Ceres iterations of the final joint solve, at most (0: none; stall stop past 100)
-  int crossing_rounds = 10;   // local re-solves raising transversality where the crossing is below min_angle, at most (0: none)
+  int crossing_rounds = 10;   // local re-solves raising transversality where the crossing is below min_angle, at most (0: none); floor rounds too where they fail
   bool seams = true;          // cut branch seams at guidance singularities and holes (φ, ψ jump across them)
   bool poles = true;          // a crown of the guidance (index +1) becomes a pole with a cap (needs seams)
   double working_edge = 0.0;  // edge length of the mesh φ, ψ are solved on, m (0: 0.4 h); a finer reference is remeshed

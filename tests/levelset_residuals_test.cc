@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <random>
 
 #include "geometry/differential_operators.h"
 #include "problems/residuals/alignment_residual.h"
 #include "problems/residuals/conjugacy_residual.h"
+#include "problems/residuals/crossing_barrier_residual.h"
 #include "problems/residuals/smoothness_residual.h"
 #include "problems/residuals/spacing_residual.h"
 #include "problems/residuals/transversality_residual.h"
@@ -83,6 +85,12 @@ TEST(LevelsetResiduals, GradientCheckAtRandomPoints) {
              std::abs(h * h * (f.G * Eigen::Vector3d(values[0], values[1], values[2])).norm() *
                           (f.G * Eigen::Vector3d(values[3], values[4], values[5])).norm() - 1.0) < 0.05);
     ExpectJacobiansMatchFiniteDifferences("TransversalityResidual", TransversalityResidual::Create(f.G, f.n, 0.5, f.area, h), values);
+    // The crossing barrier, with its floor 0.1–0.3 below s (in its smooth part, s < sin θ_min,
+    // which the loop above keeps away from; above sin θ_min it is zero, which the check also
+    // compares).
+    ExpectJacobiansMatchFiniteDifferences("CrossingBarrierResidual",
+                                          CrossingBarrierResidual::Create(f.G, f.n, 0.5, sine - Uniform(0.1, 0.3), f.area, h),
+                                          values);
   }
 }
 
@@ -197,6 +205,32 @@ TEST(LevelsetResiduals, TransversalityPenalisesShallowCrossingsAndFoldOvers) {
   // Denser ψ lines at a shallow angle are penalised by their angle, not their density.
   EXPECT_NEAR(r(3.0 * (std::cos(0.2) * e1 + std::sin(0.2) * e2)), std::sqrt(f.area) * (0.5 - std::sin(0.2)), 1e-12);
   EXPECT_NEAR(r(0.5 * e2), std::sqrt(f.area) * 0.0, 1e-12);              // sparser at 90°: area ½ ≥ ½
+}
+
+TEST(LevelsetResiduals, CrossingBarrierGrowsWithoutBoundTowardsItsFloorAndRefusesBelow) {
+  const Face f = RandomFace();
+  const Eigen::Vector3d e1 = RandomTangent(f.n), e2 = f.n.cross(e1);
+  const Eigen::Vector3d phi = ValuesWithGradient(f, e1);
+  const double floor = std::sin(0.1);  // about 5.7°
+  const auto evaluate = [&](double angle, double* r) {
+    const Eigen::Vector3d psi = ValuesWithGradient(f, std::cos(angle) * e1 + std::sin(angle) * e2);
+    const std::vector<double> values{phi[0], phi[1], phi[2], psi[0], psi[1], psi[2]};
+    std::vector<const double*> blocks;
+    for (const double& v : values) blocks.push_back(&v);
+    std::unique_ptr<ceres::CostFunction> cost(CrossingBarrierResidual::Create(f.G, f.n, M_PI / 6, floor, f.area, 1.0));
+    return cost->Evaluate(blocks.data(), r, nullptr);
+  };
+  double r = -1.0;
+  ASSERT_TRUE(evaluate(M_PI / 2, &r));  // 90°: nothing to pay
+  EXPECT_NEAR(r, 0.0, 1e-12);
+  ASSERT_TRUE(evaluate(M_PI / 6 + 1e-9, &r));  // at θ_min: zero, continuously
+  EXPECT_NEAR(r, 0.0, 1e-8);
+  ASSERT_TRUE(evaluate(0.2, &r));  // (sin θ_min − s) / (s − t), times √A
+  EXPECT_NEAR(r, std::sqrt(f.area) * (0.5 - std::sin(0.2)) / (std::sin(0.2) - floor), 1e-12);
+  ASSERT_TRUE(evaluate(0.1 + 1e-6, &r));  // a hair above the floor: enormous
+  EXPECT_GT(r, 1e5 * std::sqrt(f.area));
+  EXPECT_FALSE(evaluate(0.1 - 1e-6, &r));  // at or below the floor (a fold-over too): refused,
+  EXPECT_FALSE(evaluate(-0.3, &r));        // so Ceres rejects the step that would get there
 }
 
 }  // namespace

@@ -151,21 +151,28 @@ TEST(LevelSets, TranslationalSurfaceGivesTheConjugateParameterLines) {
 }
 
 
+// The level sets of a 12 m square under circles round (2, 2) (index +1), h = 1.5 m, with
+// options.crossing_rounds 0 (without) and `rounds` (with).
+void SolveRingGuidance(LevelsetOptions options, int rounds, LevelSetSolution* without, LevelSetSolution* with) {
+  const SurfaceModel s(Plane(12.0, 0.6));
+  const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(-(p.y() - 2.0), p.x() - 2.0, 0.0).normalized();
+  });
+  options.crossing_rounds = 0;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, without).ok());
+  options.crossing_rounds = rounds;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, with).ok());
+}
+
 // A guidance field with a singularity (circles around a point inside the square, index +1):
 // no single-valued φ follows it, and the joint solve's transversality penalty leaves faces
 // crossing below min_angle. The crossing rounds (levelset.crossing_rounds) must lift every
 // face to min_angle without fold-overs; without them some face stays below.
 TEST(LevelSets, CrossingRoundsLiftEveryFaceToTheMinimumAngle) {
-  const SurfaceModel s(Plane(12.0, 0.6));
-  const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d& p) {
-    return Eigen::Vector3d(-(p.y() - 2.0), p.x() - 2.0, 0.0).normalized();
-  });
   LevelsetOptions options;
-  options.crossing_rounds = 0;
   LevelSetSolution without, with;
-  ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, &without).ok());
-  options.crossing_rounds = 6;
-  ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, &with).ok());
+  SolveRingGuidance(options, 6, &without, &with);
+  ASSERT_FALSE(HasFatalFailure());
   std::cout << "singular guidance: min crossing " << without.metrics.min_crossing_angle_deg << "° ("
             << without.metrics.faces_below_min_angle << " faces below) without rounds, "
             << with.metrics.min_crossing_angle_deg << "° (" << with.metrics.faces_below_min_angle
@@ -185,6 +192,28 @@ TEST(LevelSets, CrossingRoundsLiftEveryFaceToTheMinimumAngle) {
   EXPECT_LE(with.metrics.alignment_rms_deg, 28.5);
   EXPECT_LE(with.metrics.spacing_cv_psi, 0.25);
   EXPECT_TRUE(with.solver.contains("crossing_round_1"));
+}
+
+// The floor rounds (problems/levelset_problem.cc, FloorRounds): where the crossing rounds end
+// with a fold-over or a face more than 5° below min_angle, local re-solves with a barrier
+// under the worst face, from the joint solve's end. The index +1 guidance of the test above
+// with min_angle 40°: 14.1° without any rounds; the crossing rounds leave a face below 35°
+// and the floor rounds' end, 38.1° (41 faces below 40°, none folded), is kept (when written).
+TEST(LevelSets, FloorRoundsLiftTheWorstCrossingWhereTheCrossingRoundsCannot) {
+  LevelsetOptions options;
+  options.min_angle = 40.0;
+  LevelSetSolution without, with;
+  SolveRingGuidance(options, 3, &without, &with);
+  ASSERT_FALSE(HasFatalFailure());
+  std::cout << "min angle 40°: " << without.metrics.min_crossing_angle_deg << "° without rounds, "
+            << with.metrics.min_crossing_angle_deg << "° (" << with.metrics.faces_below_min_angle
+            << " faces below, " << with.metrics.foldovers << " folded) with, kept: " << with.crossing_rounds_kept << "\n";
+  EXPECT_LT(without.metrics.min_crossing_angle_deg, 25.0);
+  EXPECT_EQ(with.crossing_rounds_kept, "floor");
+  EXPECT_TRUE(with.solver.contains("crossing_round_1"));
+  EXPECT_TRUE(with.solver.contains("floor_round_1"));
+  EXPECT_GE(with.metrics.min_crossing_angle_deg, 35.0);
+  EXPECT_EQ(with.metrics.foldovers, 0);
 }
 
 }  // namespace

@@ -1,0 +1,62 @@
+// Crossing barrier (per face f): the crossing rounds' guarantee. With the transversality
+// term's signed sine
+//   s_f = n · (∇φ × ∇ψ) / max(|∇φ| |∇ψ|, 1/h²)
+// (transversality_residual.h) and a floor t < sin θ_min below which no face may go,
+//   r_f = √A_f · (sin θ_min − s_f) / (s_f − t)   for t < s_f < sin θ_min,
+//   r_f = 0                                     for s_f ≥ sin θ_min,
+// and the evaluation fails for s_f ≤ t, so Ceres rejects any step that would take a face to
+// the floor (the trust region shrinks instead). r_f² grows without bound as s_f → t and is
+// zero, with a zero derivative, at s_f = sin θ_min. Starting from a state with every face
+// above t, every accepted iterate keeps every face above t: the worst crossing cannot be
+// traded away to its neighbours, as the hinge alone allows.
+// Parameters: φ at the face's three vertices, then ψ at the same vertices.
+#pragma once
+
+#include <ceres/ceres.h>
+
+#include <cmath>
+
+#include "problems/residuals/p1_gradient.h"
+
+namespace pqlayout {
+
+struct CrossingBarrierResidual {
+  CrossingBarrierResidual(const Eigen::Matrix3d& basis_gradients, const Eigen::Vector3d& normal,
+                          double min_angle_radians, double floor, double area, double spacing)
+      : G(basis_gradients), n(normal), sin_min(std::sin(min_angle_radians)), floor(floor),
+        sqrt_area(std::sqrt(area)), h_squared(spacing * spacing) {}
+
+  // s_f, as the transversality term defines it.
+  template <typename T>
+  T SignedSine(const T* phi_a, const T* phi_b, const T* phi_c, const T* psi_a, const T* psi_b, const T* psi_c) const {
+    const Eigen::Matrix<T, 3, 1> gphi = P1Gradient(G, phi_a, phi_b, phi_c);
+    const Eigen::Matrix<T, 3, 1> gpsi = P1Gradient(G, psi_a, psi_b, psi_c);
+    const T lengths = SafeNorm(gphi) * SafeNorm(gpsi);
+    const T denominator = lengths > T(1.0 / h_squared) ? lengths : T(1.0 / h_squared);
+    return n.cast<T>().dot(gphi.cross(gpsi)) / denominator;
+  }
+
+  template <typename T>
+  bool operator()(const T* const phi_a, const T* const phi_b, const T* const phi_c, const T* const psi_a,
+                  const T* const psi_b, const T* const psi_c, T* residual) const {
+    const T sine = SignedSine(phi_a, phi_b, phi_c, psi_a, psi_b, psi_c);
+    if (!(sine > T(floor))) return false;
+    residual[0] = sine < T(sin_min) ? T(sqrt_area) * (T(sin_min) - sine) / (sine - T(floor)) : T(0.0);
+    return true;
+  }
+
+  static ceres::CostFunction* Create(const Eigen::Matrix3d& basis_gradients, const Eigen::Vector3d& normal,
+                                     double min_angle_radians, double floor, double area, double spacing) {
+    return new ceres::AutoDiffCostFunction<CrossingBarrierResidual, 1, 1, 1, 1, 1, 1, 1>(
+        new CrossingBarrierResidual(basis_gradients, normal, min_angle_radians, floor, area, spacing));
+  }
+
+  const Eigen::Matrix3d G;
+  const Eigen::Vector3d n;
+  const double sin_min;
+  const double floor;
+  const double sqrt_area;
+  const double h_squared;
+};
+
+}  // namespace pqlayout
