@@ -1,9 +1,9 @@
 // The level-set problem on one mesh (paper §3.1): the terms of φ and ψ on their charts (seam
 // transitions included), and the solves: φ alone, ψ with φ held, both together, then the
 // crossing rounds (with the floor rounds where they fail). LevelSetProblem owns what the
-// solves share; the order in which the
-// residual blocks are added is the order of the paper's terms and must not change (Ceres'
-// ordering, and with it the last bits of every solve, follow it).
+// solves share; the order in which the residual blocks are added is the order of the paper's
+// terms and must not change (Ceres' ordering, and with it the last bits of every solve,
+// follow it).
 #include "problems/levelset_internal.h"
 
 #include <glog/logging.h>
@@ -333,7 +333,6 @@ std::vector<double> LevelSetProblem::SignedSines() const {
   }
   return sines;
 }
-
 
 // 4b. Floor rounds, when the crossing rounds end with a fold-over or below min_angle: from the
 // joint solve's end again, local re-solves (faces below min_angle + kCrossingSlack and
