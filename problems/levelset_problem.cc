@@ -54,10 +54,21 @@ constexpr double kFloorMinMargin = 0.02;
 constexpr double kNoFloor = -2.0;  // below any s_f: no barrier term
 constexpr double kTolerated = 5.0;  // degrees below min_angle the worst crossing may be (RoundsKey)
 
-// Marks the failing faces (see above), multiplies their boost and returns how many faces
-// cross below min_angle (0: nothing to do). live_phi / live_psi: the vertices free to move.
 namespace {
 
+// Marks every vertex within `rings` vertex rings of a marked one.
+void GrowRings(const SurfaceModel& s, int rings, std::vector<char>* live) {
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> next = *live;
+    for (int v = 0; v < s.num_vertices(); ++v)
+      if ((*live)[v])
+        for (const auto u : s.mesh().vv_range(VertexHandle(v))) next[u.idx()] = 1;
+    live->swap(next);
+  }
+}
+
+// Marks the failing faces (see above), multiplies their boost and returns how many faces
+// cross below min_angle (0: nothing to do). live_phi / live_psi: the vertices free to move.
 int RaiseCrossings(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<double>& phi,
                    const std::vector<double>& psi, double min_angle, std::vector<double>* boost,
                    std::vector<char>* live_phi, std::vector<char>* live_psi) {
@@ -72,28 +83,14 @@ int RaiseCrossings(const SurfaceModel& s, const LevelSetGeometry& geo, const std
     (*boost)[f] *= kCrossingBoost;
     for (const int v : s.face_vertices(f)) live[v] = 1;
   }
-  for (int ring = 1; ring <= std::max(kPhiRings, kPsiRings); ++ring) {
-    std::vector<char> next = live;
-    for (int v = 0; v < s.num_vertices(); ++v)
-      if (live[v])
-        for (const auto u : s.mesh().vv_range(VertexHandle(v))) next[u.idx()] = 1;
-    live.swap(next);
-    if (ring == kPhiRings) *live_phi = live;
-    if (ring == kPsiRings) *live_psi = live;
-  }
+  static_assert(kPhiRings <= kPsiRings, "φ's live region lies inside ψ's");
+  GrowRings(s, kPhiRings, &live);
+  *live_phi = live;
+  GrowRings(s, kPsiRings - kPhiRings, &live);
+  *live_psi = live;
   return below;
 }
 
-// Marks every vertex within `rings` vertex rings of a marked one.
-void GrowRings(const SurfaceModel& s, int rings, std::vector<char>* live) {
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<char> next = *live;
-    for (int v = 0; v < s.num_vertices(); ++v)
-      if ((*live)[v])
-        for (const auto u : s.mesh().vv_range(VertexHandle(v))) next[u.idx()] = 1;
-    live->swap(next);
-  }
-}
 
 // What the solves on one mesh share: the charts of φ and ψ (seam transitions), the per-face
 // transversality boost and hinge of the crossing rounds, and the term builders.
@@ -116,6 +113,10 @@ class LevelSetProblem {
   Status FloorRounds();
   // s_f of the transversality term on every face (crossing_barrier_residual.h).
   std::vector<double> SignedSines() const;
+  // Closes a live set over the seam copies, so that every face whose values can move is in
+  // it (and carries the barrier): a live copy frees its parameter, a live parameter moves
+  // every copy of it.
+  void CloseOverCopies(std::vector<char>* live) const;
   void AddPhiTerms(ceres::Problem* problem, const std::vector<char>* live = nullptr) const;
   void AddPsiTerms(ceres::Problem* problem, const std::vector<char>* live = nullptr) const;
   void AddSeamSmoothness(ceres::Problem* problem, const Chart& u, const std::vector<double>& offsets,
@@ -293,9 +294,7 @@ Status LevelSetProblem::CrossingRounds(const std::string& prefix, double floor) 
       if (live_psi[v]) live_psi[psi_chart_.At(v).vertex] = 1;
     }
     hinge_angle_ = min_angle_ + kCrossingMargin / kDegrees;
-    if (floor != kNoFloor)
-      for (int v = 0; v < s_.num_vertices(); ++v)
-        if (live_psi[phi_chart_.At(v).vertex] || live_psi[psi_chart_.At(v).vertex]) live_psi[v] = 1;
+    if (floor != kNoFloor) CloseOverCopies(&live_psi);
     barrier_floor_ = floor;
     ceres::Problem local;
     AddPhiTerms(&local, &live_psi);
@@ -323,6 +322,13 @@ Status LevelSetProblem::CrossingRounds(const std::string& prefix, double floor) 
   phi_ = best_phi;  // a round may pass through worse states (more faces below) on its way
   psi_ = best_psi;
   return Status::Ok();
+}
+
+void LevelSetProblem::CloseOverCopies(std::vector<char>* live) const {
+  for (int v = 0; v < s_.num_vertices(); ++v)
+    if ((*live)[v]) (*live)[phi_chart_.At(v).vertex] = (*live)[psi_chart_.At(v).vertex] = 1;
+  for (int v = 0; v < s_.num_vertices(); ++v)
+    if ((*live)[phi_chart_.At(v).vertex] || (*live)[psi_chart_.At(v).vertex]) (*live)[v] = 1;
 }
 
 std::vector<double> LevelSetProblem::SignedSines() const {
@@ -363,12 +369,7 @@ Status LevelSetProblem::FloorRounds() {
       if (sines[f] < sin_failing)
         for (const int v : s_.face_vertices(f)) live[v] = 1;
     GrowRings(s_, kFloorRings, &live);
-    // Every face whose values can move carries the barrier: a live copy frees its parameter,
-    // and a live parameter moves every copy of it.
-    for (int v = 0; v < s_.num_vertices(); ++v)
-      if (live[v]) live[phi_chart_.At(v).vertex] = live[psi_chart_.At(v).vertex] = 1;
-    for (int v = 0; v < s_.num_vertices(); ++v)
-      if (live[phi_chart_.At(v).vertex] || live[psi_chart_.At(v).vertex]) live[v] = 1;
+    CloseOverCopies(&live);
     barrier_floor_ = lowest - std::max(kFloorMargin * (sin_min - lowest), kFloorMinMargin);
     ceres::Problem local;
     AddPhiTerms(&local, &live);
