@@ -71,10 +71,12 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
     if (m.foldovers > 0) what << "; " << m.foldovers << " faces fold over: the quads there are inverted";
     LOG(WARNING) << "levelset: " << what.str();
   }
+  FigureOptions figure;
+  figure.min_crossing_deg = state->config.levelset.min_angle;
   PQ_RETURN_IF_ERROR(WriteLevelSetFigure(surface, phi_values, psi_values, h, state->guidance.direction,
                                          state->guidance.weight,
                                          "Level sets: φ (black) aligned with the guidance, ψ (blue) conjugate",
-                                         out->Path("figures/levelsets.svg"), {}, seams));
+                                         out->Path("figures/levelsets.svg"), figure, seams));
   return Status::Ok();
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "geometry/differential_operators.h"
 #include "geometry/level_lines.h"
 #include "geometry/planarity.h"
 #include "geometry/streamlines.h"
@@ -24,6 +25,8 @@ const Stroke kFaintStreamline{Rgb{0xb0, 0xb0, 0xb0}, 0.9, 0.9};  // background c
 const Stroke kPhiLine{Rgb{0x00, 0x00, 0x00}, 1.5, 1.0};           // φ = i·h (paper: black)
 const Stroke kPsiLine{Rgb{0x1f, 0x5f, 0xd6}, 1.5, 1.0};           // ψ = j·h (paper: blue)
 const Stroke kSeamLine{Rgb{0xd6, 0x27, 0x28}, 1.2, 0.8};          // seams of a branched layout
+const Rgb kShearedFill{0xfd, 0xbf, 0x6f};   // faces crossing below min_crossing_deg
+const Rgb kFoldedFill{0x6a, 0x3d, 0x9a};    // faces where φ and ψ fold over
 constexpr double kMinLevelSpacingPx = 4.0;  // closer level lines (px of 1000 px): every k-th
 constexpr double kMaxLevelLines = 1000.0;   // per family, whatever the function's range
 
@@ -173,6 +176,34 @@ std::vector<std::vector<Vector2d>> GuidanceCurves(const SurfaceModel& surface,
   return EvenlySpacedStreamlines(surface, direction, streamlines);
 }
 
+// The faces of `surface` where φ and ψ cross below min_crossing_deg filled kShearedFill, those
+// that fold over kFoldedFill; their legend entries (none for a set that is empty).
+std::vector<LegendEntry> DrawShallowCrossings(const SurfaceModel& surface, const std::vector<double>& phi,
+                                              const std::vector<double>& psi, double min_crossing_deg,
+                                              SvgCanvas* canvas) {
+  std::vector<char> sheared(surface.num_faces(), 0), folded(surface.num_faces(), 0);
+  bool any_sheared = false, any_folded = false;
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const Eigen::Vector3d a = FaceGradient(surface, f, phi), b = FaceGradient(surface, f, psi);
+    const double sine = surface.face_normal(f).dot(a.cross(b)) / (a.norm() * b.norm());
+    folded[f] = !(sine > 0.0);
+    sheared[f] = !folded[f] && std::asin(std::min(1.0, sine)) * 180.0 / M_PI < min_crossing_deg;
+    any_sheared |= sheared[f] != 0, any_folded |= folded[f] != 0;
+  }
+  std::vector<LegendEntry> legend;
+  if (any_sheared) {
+    canvas->Region(RegionOutline(surface, sheared), kShearedFill.Hex());
+    std::ostringstream label;
+    label << "φ and ψ cross below " << min_crossing_deg << "° (sheared quads)";
+    legend.push_back({kShearedFill.Hex(), label.str()});
+  }
+  if (any_folded) {
+    canvas->Region(RegionOutline(surface, folded), kFoldedFill.Hex());
+    legend.push_back({kFoldedFill.Hex(), "φ and ψ fold over (inverted quads)"});
+  }
+  return legend;
+}
+
 // The integer levels first, first + stride, ... ≤ last drawn for one function: every one
 // unless they would be closer than kMinLevelSpacingPx (min_stride) or more than
 // kMaxLevelLines.
@@ -277,6 +308,9 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
                                 std::to_string(spacing));
   SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
   const std::string hatch = DrawNotEnforcedRegion(surface, weight, &canvas);
+  const std::vector<LegendEntry> crossings =
+      options.min_crossing_deg > 0.0 ? DrawShallowCrossings(level_surface, phi, psi, options.min_crossing_deg, &canvas)
+                                     : std::vector<LegendEntry>{};
   canvas.Polylines(GuidanceCurves(surface, direction, options, canvas), kFaintStreamline);
 
   // Lines h apart in the world are h · px_per_metre apart in the drawing.
@@ -291,6 +325,7 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
       {kPsiLine.colour.Hex(), LevelLegendLabel("ψ = j·h", spacing, psi_levels.stride, "conjugate to φ")},
       {kFaintStreamline.colour.Hex(), "integral curves of the guidance field"},
       {hatch, "alignment not enforced (weight < 0.5)"}};
+  legend.insert(legend.end(), crossings.begin(), crossings.end());
   if (seams != nullptr && seams->num_paths() > 0) {
     Rings paths;
     for (int p = 0; p < seams->num_paths(); ++p) {

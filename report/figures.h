@@ -41,6 +41,7 @@ struct FigureOptions {
   int max_face_polygons = 200000;       // above this face count, resample onto a grid
   double grid_cell_px = 2.0;            // grid square size (px of a 1000 px drawing)
   double streamline_spacing_px = 16.0;  // distance between integral curves (px of 1000 px)
+  double min_crossing_deg = 0.0;        // level-set figure: faces crossing below this filled (0: none)
 };
 
 // Paper Fig. 3: top view, v_z per vertex (metres) as a smooth colour map (always resampled
@@ -75,6 +76,9 @@ Status WriteGuidanceFigure(const SurfaceModel& surface,
 // legend says so. InvalidInput if φ or ψ does not have one finite value per vertex,
 // `direction` one vector per face, `weight` one finite value per face, or spacing is not a
 // positive number.
+// With options.min_crossing_deg > 0, the faces where φ's and ψ's lines cross at less than
+// that angle are filled light orange under the lines (sheared quads), and those where they
+// fold over (n · (∇φ × ∇ψ) ≤ 0: inverted quads) purple; legend entries only if there are any.
 // seams (optional, geometry/seams.h): φ, ψ are then per vertex of seams->cut(), the lines
 // are traced on the cut surface (they meet across the seams), and the seams are drawn in red
 // with their branch points (interior ends) as dots.

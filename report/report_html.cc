@@ -71,7 +71,8 @@ const FigureEntry kFigures[] = {
      "(paper Fig. 6)."},
     {"levelsets.svg", "levelset",
      "Level lines φ = i·h (black, aligned with the guidance) and ψ = j·h (blue, conjugate) "
-     "(paper Fig. 7, 12)."},
+     "(paper Fig. 7, 12); orange where they cross below levelset.min_angle (sheared quads), "
+     "purple where they fold over."},
     {"shell_3d.svg", "planarize",
      "The planarised grid shell in an oblique view (orthographic, from the south-west), faces "
      "coloured by planarity δ, lightly shaded; the reference footprint in grey on the ground."},

@@ -237,6 +237,57 @@ TEST_F(LevelSetFigure, HasOneSubpathPerLevelLineAndTheLegend) {
   EXPECT_EQ(Count(svg, "url(#"), 2);  // the hatched region and its legend swatch
 }
 
+// The x coordinates (px) of a filled region's path (`<path fill="colour" ...d="M x y L x y ...">`).
+std::vector<double> RegionXs(const std::string& svg, const std::string& fill) {
+  const std::string key = "<path fill=\"" + fill + "\" fill-rule=\"evenodd\" d=\"";
+  const size_t start = svg.find(key);
+  if (start == std::string::npos) return {};
+  const std::string d = svg.substr(start + key.size(), svg.find('"', start + key.size()) - start - key.size());
+  std::vector<double> xs;
+  const std::regex pair("(-?[0-9.]+) (-?[0-9.]+)");
+  for (auto it = std::sregex_iterator(d.begin(), d.end(), pair); it != std::sregex_iterator(); ++it)
+    xs.push_back(std::stod((*it)[1]));
+  return xs;
+}
+
+// With options.min_crossing_deg, faces where φ's and ψ's lines cross shallower are filled
+// orange and those that fold over purple, each with a legend entry; nothing when the lines
+// are orthogonal.
+TEST_F(LevelSetFigure, MarksShallowCrossingsAndFoldOvers) {
+  FigureOptions options;
+  options.min_crossing_deg = 30.0;
+  const std::string path = testing::TempDir() + "/crossings.svg";
+  ASSERT_TRUE(WriteLevelSetFigure(square_, phi_, psi_, h_, direction_, weight_, "orthogonal", path, options).ok());
+  std::string svg = ReadText(path);
+  EXPECT_EQ(svg.find("#fdbf6f"), std::string::npos);  // ψ ⟂ φ: nothing marked
+  EXPECT_EQ(svg.find("#6a3d9a"), std::string::npos);
+
+  // From x = 6 m on, ∇ψ turns to 20° from ∇φ (lines crossing at 20°); the left part, x ≤ 4 m
+  // hatched, stays orthogonal.
+  const double turn = 20.0 * M_PI / 180.0;
+  std::vector<double> psi = psi_;
+  for (int v = 0; v < square_.num_vertices(); ++v) {
+    const Vector3d p = square_.position(v);
+    if (p.x() >= 6.0) psi[v] = ((p.x() - 6.0) * std::cos(turn) + p.y() * std::sin(turn)) / h_;
+  }
+  ASSERT_TRUE(WriteLevelSetFigure(square_, phi_, psi, h_, direction_, weight_, "sheared", path, options).ok());
+  svg = ReadText(path);
+  EXPECT_NE(svg.find("φ and ψ cross below 30° (sheared quads)"), std::string::npos);
+  EXPECT_EQ(svg.find("#6a3d9a"), std::string::npos);
+  const std::vector<double> sheared = RegionXs(svg, "#fdbf6f"), hatched = RegionXs(svg, "url(#h0)");
+  ASSERT_FALSE(sheared.empty());
+  ASSERT_FALSE(hatched.empty());
+  // The marked faces all lie right of the hatched strip (x ≤ 4 m) and reach the right edge.
+  EXPECT_GT(*std::min_element(sheared.begin(), sheared.end()), *std::max_element(hatched.begin(), hatched.end()));
+  EXPECT_GT(*std::max_element(sheared.begin(), sheared.end()), 2.0 * *std::max_element(hatched.begin(), hatched.end()));
+
+  for (int v = 0; v < square_.num_vertices(); ++v) psi[v] = -square_.position(v).y() / h_;
+  ASSERT_TRUE(WriteLevelSetFigure(square_, phi_, psi, h_, direction_, weight_, "folded", path, options).ok());  // ψ = −y/h
+  svg = ReadText(path);
+  EXPECT_NE(svg.find("φ and ψ fold over (inverted quads)"), std::string::npos);
+  EXPECT_EQ(svg.find("#fdbf6f"), std::string::npos);
+}
+
 TEST_F(LevelSetFigure, DenseLevelsAreThinnedAndSaidSo) {
   const double h = 0.01;  // 1200 levels across a ~800 px plot
   std::vector<double> phi(square_.num_vertices()), psi(square_.num_vertices());

@@ -26,20 +26,10 @@ struct CrossingBarrierResidual {
       : G(basis_gradients), n(normal), sin_min(std::sin(min_angle_radians)), floor(floor),
         sqrt_area(std::sqrt(area)), h_squared(spacing * spacing) {}
 
-  // s_f, as the transversality term defines it.
-  template <typename T>
-  T SignedSine(const T* phi_a, const T* phi_b, const T* phi_c, const T* psi_a, const T* psi_b, const T* psi_c) const {
-    const Eigen::Matrix<T, 3, 1> gphi = P1Gradient(G, phi_a, phi_b, phi_c);
-    const Eigen::Matrix<T, 3, 1> gpsi = P1Gradient(G, psi_a, psi_b, psi_c);
-    const T lengths = SafeNorm(gphi) * SafeNorm(gpsi);
-    const T denominator = lengths > T(1.0 / h_squared) ? lengths : T(1.0 / h_squared);
-    return n.cast<T>().dot(gphi.cross(gpsi)) / denominator;
-  }
-
   template <typename T>
   bool operator()(const T* const phi_a, const T* const phi_b, const T* const phi_c, const T* const psi_a,
                   const T* const psi_b, const T* const psi_c, T* residual) const {
-    const T sine = SignedSine(phi_a, phi_b, phi_c, psi_a, psi_b, psi_c);
+    const T sine = SignedCrossingSine(G, n, h_squared, phi_a, phi_b, phi_c, psi_a, psi_b, psi_c);
     if (!(sine > T(floor))) return false;
     residual[0] = sine < T(sin_min) ? T(sqrt_area) * (T(sin_min) - sine) / (sine - T(floor)) : T(0.0);
     return true;

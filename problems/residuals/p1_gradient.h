@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace pqlayout {
 
@@ -18,6 +19,19 @@ template <typename T>
 T SafeNorm(const Eigen::Matrix<T, 3, 1>& v) {
   const T squared = v.squaredNorm();
   return squared > T(1e-300) ? sqrt(squared) : T(0.0);
+}
+
+// The signed sine of the crossing of φ and ψ on a face (transversality_residual.h, used also
+// by crossing_barrier_residual.h): with the face's unit normal n and spacing h,
+//   s = n · (∇φ × ∇ψ) / max(|∇φ| |∇ψ|, 1/h²).
+template <typename T>
+T SignedCrossingSine(const Eigen::Matrix3d& G, const Eigen::Vector3d& n, double h_squared, const T* phi_a,
+                     const T* phi_b, const T* phi_c, const T* psi_a, const T* psi_b, const T* psi_c) {
+  const Eigen::Matrix<T, 3, 1> gphi = P1Gradient(G, phi_a, phi_b, phi_c);
+  const Eigen::Matrix<T, 3, 1> gpsi = P1Gradient(G, psi_a, psi_b, psi_c);
+  const T lengths = SafeNorm(gphi) * SafeNorm(gpsi);
+  const T denominator = lengths > T(1.0 / h_squared) ? lengths : T(1.0 / h_squared);
+  return n.cast<T>().dot(gphi.cross(gpsi)) / denominator;
 }
 
 }  // namespace pqlayout

@@ -28,11 +28,7 @@ struct TransversalityResidual {
   template <typename T>
   bool operator()(const T* const phi_a, const T* const phi_b, const T* const phi_c, const T* const psi_a,
                   const T* const psi_b, const T* const psi_c, T* residual) const {
-    const Eigen::Matrix<T, 3, 1> gphi = P1Gradient(G, phi_a, phi_b, phi_c);
-    const Eigen::Matrix<T, 3, 1> gpsi = P1Gradient(G, psi_a, psi_b, psi_c);
-    const T lengths = SafeNorm(gphi) * SafeNorm(gpsi);
-    const T denominator = lengths > T(1.0 / h_squared) ? lengths : T(1.0 / h_squared);
-    const T sine = n.cast<T>().dot(gphi.cross(gpsi)) / denominator;
+    const T sine = SignedCrossingSine(G, n, h_squared, phi_a, phi_b, phi_c, psi_a, psi_b, psi_c);
     residual[0] = sine < T(sin_min) ? T(sqrt_area) * (T(sin_min) - sine) : T(0.0);
     return true;
   }
