@@ -23,8 +23,10 @@ struct HeightField {
 // Meshes the domain at edge_length (MeshPlanarDomain), lifts every vertex to z = height(x, y)
 // and remeshes on the surface (edge splits, Delaunay flips, tangential smoothing; boundary
 // vertices never move), so that edge length and angles hold in space. Counter-clockwise plan
-// triangles: normals point up. MeshPlanarDomain's errors as they are (the caller names its key).
-Status MeshHeightField(const HeightField& field, double edge_length, TriMesh* mesh);
+// triangles: normals point up. guard_angles: the smoothing never takes a triangle's smallest
+// angle in space below 20° (and below what it was), for plan meshes that grade from short
+// boundary segments. MeshPlanarDomain's errors as they are (the caller names its key).
+Status MeshHeightField(const HeightField& field, double edge_length, TriMesh* mesh, bool guard_angles = false);
 
 inline Status RequirePositive(double value, const std::string& key) {
   if (std::isfinite(value) && value > 0.0) return Status::Ok();

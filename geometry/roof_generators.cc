@@ -7,6 +7,16 @@ namespace pqlayout {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// An opening's circle turns by at most 4° per boundary segment: a circle, not a polygon whose
+// every vertex the extraction must follow as a kink (extract.boundary_tolerance makes a turn
+// above 2·asin(0.01 / 0.2) = 5.7° sharp). At the reference edge alone (0.6 m on a 1.6 m radius:
+// 21° per vertex) the panels at the openings got edges of 0.12–0.19 h (issue 17, edge_min_h).
+// The plan mesh then grades from these short segments (MeshHeightField guards its angles).
+constexpr double kOpeningMaxTurn = 4.0 * kPi / 180.0;
+
+DomainLoop OpeningLoop(const Eigen::Vector2d& centre, double radius, double edge_length) {
+  return CircleLoop(centre, radius, std::min(edge_length, radius * kOpeningMaxTurn));
+}
 
 // The ellipse with semi-axes (a, b) as a polygon with sides no longer than edge_length.
 DomainLoop Ellipse(double a, double b, double edge_length) {
@@ -76,7 +86,7 @@ Status HoleOffCentre(const GeneratorParams& params, HeightField* field) {
   PQ_RETURN_IF_ERROR(RequireWidthDepthRise(params));
   const Eigen::Vector2d centre(0.2 * params.width, 0.1 * params.depth);
   const double r = 0.12 * std::min(params.width, params.depth), rise = params.rise;
-  field->domain = {CenteredRectangle(params), CircleLoop(centre, r, params.edge_length)};
+  field->domain = {CenteredRectangle(params), OpeningLoop(centre, r, params.edge_length)};
   field->height = [=](double x, double y) {
     const double rho = (Eigen::Vector2d(x, y) - centre).norm(), t = (rho - 1.6 * r) / (0.5 * r);
     return rise * Bubble(params, x, y) * (1.0 + 0.4 * std::exp(-t * t));
@@ -88,8 +98,8 @@ Status TwoHoles(const GeneratorParams& params, HeightField* field) {
   PQ_RETURN_IF_ERROR(RequireWidthDepthRise(params));
   const double s = std::min(params.width, params.depth), rise = params.rise;
   field->domain = {CenteredRectangle(params),
-                   CircleLoop({-0.25 * params.width, 0.0}, 0.1 * s, params.edge_length),
-                   CircleLoop({0.25 * params.width, 0.05 * params.depth}, 0.08 * s, params.edge_length)};
+                   OpeningLoop({-0.25 * params.width, 0.0}, 0.1 * s, params.edge_length),
+                   OpeningLoop({0.25 * params.width, 0.05 * params.depth}, 0.08 * s, params.edge_length)};
   field->height = [=](double x, double y) { return rise * Bubble(params, x, y); };
   return Status::Ok();
 }

@@ -4,6 +4,7 @@
 // so that edge length and angles hold in space and not only in the plan.
 #include "geometry/surface_generators.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -277,9 +278,61 @@ void FlipToSurfaceDelaunay(TriMesh* mesh) {
   }
 }
 
+// Whether moving v to plan position q would fold one of its triangles in the plan.
+bool FoldsInPlan(const TriMesh& mesh, VertexHandle v, const Eigen::Vector2d& q) {
+  for (HalfedgeHandle h : mesh.voh_range(v)) {
+    const HalfedgeHandle opposite = mesh.next_halfedge_handle(h);
+    if (PlanOrientation(q, PlanPosition(mesh, mesh.from_vertex_handle(opposite)),
+                        PlanPosition(mesh, mesh.to_vertex_handle(opposite))) <= 0.0)
+      return true;
+  }
+  return false;
+}
+
+// The smallest angle in space of the triangles round v.
+double SmallestAngleAround(const TriMesh& mesh, VertexHandle v) {
+  double smallest = M_PI;
+  for (FaceHandle f : mesh.vf_range(v)) {
+    std::array<Eigen::Vector3d, 3> p;
+    int k = 0;
+    for (VertexHandle u : mesh.fv_range(f)) p[k++] = ToEigen(mesh.point(u));
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d a = p[(i + 1) % 3] - p[i], b = p[(i + 2) % 3] - p[i];
+      smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)));
+    }
+  }
+  return smallest;
+}
+
+// A vertex whose triangles have an angle below 20° in space (next to a graded boundary on a
+// steep slope, where the boundary vertices cannot move) goes to the place of a 9 × 9 plan grid
+// round it, ±0.5 of its shortest edge, where the smallest angle round it is largest without
+// folding a triangle in the plan.
+void PlaceForAngles(const HeightField& field, VertexHandle v, TriMesh* mesh) {
+  constexpr int kGrid = 4;
+  const Eigen::Vector2d centre = PlanPosition(*mesh, v);
+  double reach = INFINITY;
+  for (VertexHandle u : mesh->vv_range(v)) reach = std::min(reach, 0.5 * (PlanPosition(*mesh, u) - centre).norm());
+  OpenMesh::Vec3d best = mesh->point(v);
+  double best_angle = SmallestAngleAround(*mesh, v);
+  for (int i = -kGrid; i <= kGrid; ++i)
+    for (int j = -kGrid; j <= kGrid; ++j) {
+      const Eigen::Vector2d q = centre + reach / kGrid * Eigen::Vector2d(i, j);
+      if (FoldsInPlan(*mesh, v, q)) continue;
+      mesh->set_point(v, Lift(field, q));
+      const double angle = SmallestAngleAround(*mesh, v);
+      if (angle > best_angle) best_angle = angle, best = mesh->point(v);
+    }
+  mesh->set_point(v, best);
+}
+
 // Moves each interior vertex to the plan position under the area-weighted centroid of its
-// incident triangles (a tangential Lloyd step), unless that would fold a triangle in the plan.
-void SmoothInteriorVertices(const HeightField& field, TriMesh* mesh) {
+// incident triangles (a tangential Lloyd step), unless that would fold a triangle in the plan
+// or, with `guard`, take the smallest angle round it below kSmoothMinAngle (and below what it
+// was): where the plan mesh grades from short boundary segments (an opening drawn as a
+// circle), the step towards the larger triangles flattened the small ones to 15–18° in space.
+void SmoothInteriorVertices(const HeightField& field, bool guard, TriMesh* mesh) {
+  constexpr double kSmoothMinAngle = 20.0 * M_PI / 180.0;
   for (VertexHandle v : mesh->vertices()) {
     if (mesh->is_boundary(v)) continue;
     Eigen::Vector3d weighted_centroid = Eigen::Vector3d::Zero();
@@ -290,13 +343,19 @@ void SmoothInteriorVertices(const HeightField& field, TriMesh* mesh) {
       area += face_area;
     }
     const Eigen::Vector2d target = (weighted_centroid / area).head<2>();
-    bool folds = false;
-    for (HalfedgeHandle h : mesh->voh_range(v)) {
-      const HalfedgeHandle opposite = mesh->next_halfedge_handle(h);
-      folds |= PlanOrientation(target, PlanPosition(*mesh, mesh->from_vertex_handle(opposite)),
-                               PlanPosition(*mesh, mesh->to_vertex_handle(opposite))) <= 0.0;
+    const bool folds = FoldsInPlan(*mesh, v, target);
+    if (!guard) {
+      if (!folds) mesh->set_point(v, Lift(field, target));
+      continue;
     }
-    if (!folds) mesh->set_point(v, Lift(field, target));
+    const OpenMesh::Vec3d before = mesh->point(v);
+    const double angle_before = SmallestAngleAround(*mesh, v);
+    if (!folds) {
+      mesh->set_point(v, Lift(field, target));
+      const double angle_after = SmallestAngleAround(*mesh, v);
+      if (angle_after < kSmoothMinAngle && angle_after < angle_before) mesh->set_point(v, before);
+    }
+    if (SmallestAngleAround(*mesh, v) < kSmoothMinAngle) PlaceForAngles(field, v, mesh);
   }
 }
 
@@ -304,13 +363,14 @@ void SmoothInteriorVertices(const HeightField& field, TriMesh* mesh) {
 // Court rises with slope up to 1.4 from its north edge, which lengthens edges by up to 1.7
 // and flattens triangles). A few rounds of isotropic remeshing on the surface restore edge
 // length and shape in space. Every vertex stays on z = f(x, y); boundary vertices never move.
-void RemeshOnSurface(const HeightField& field, double edge_length, TriMesh* mesh) {
+// guard: SmoothInteriorVertices' angle guard (GenerateSurface: where the plan mesh grades).
+void RemeshOnSurface(const HeightField& field, double edge_length, bool guard, TriMesh* mesh) {
   constexpr int kRounds = 5;
   constexpr double kMaxLengthRatio = 4.0 / 3.0;  // as in Botsch & Kobbelt 2004
   for (int round = 0; round < kRounds; ++round) {
     SplitLongEdges(field, kMaxLengthRatio * edge_length, mesh);
     FlipToSurfaceDelaunay(mesh);
-    SmoothInteriorVertices(field, mesh);
+    SmoothInteriorVertices(field, guard, mesh);
   }
   FlipToSurfaceDelaunay(mesh);
 }
@@ -356,11 +416,11 @@ const std::vector<std::string>& GeneratorNames() {
   return names;
 }
 
-Status MeshHeightField(const HeightField& field, double edge_length, TriMesh* mesh) {
+Status MeshHeightField(const HeightField& field, double edge_length, TriMesh* mesh, bool guard_angles) {
   PlanarTriangulation plan;
   PQ_RETURN_IF_ERROR(MeshPlanarDomain(field.domain, edge_length, &plan));
   LiftToMesh(plan, field, mesh);
-  RemeshOnSurface(field, edge_length, mesh);
+  RemeshOnSurface(field, edge_length, guard_angles, mesh);
   mesh->update_face_normals();
   return Status::Ok();
 }
@@ -374,7 +434,16 @@ Status GenerateSurface(const GeneratorParams& params, TriMesh* mesh) {
   PQ_RETURN_IF_ERROR(RequirePositive(params.edge_length, "surface.edge_length"));
   HeightField field;
   PQ_RETURN_IF_ERROR(generator->build(params, &field));
-  return MeshHeightField(field, params.edge_length, mesh).WithContext("surface.edge_length");
+  // A domain loop with segments much shorter than the edge (an opening drawn as a circle,
+  // geometry/roof_generators.cc) grades the plan mesh: the smoothing then guards the angles.
+  // Every other generator's mesh stays as it was (the Great Court's reference, which every
+  // golden number rests on, byte-identical).
+  constexpr double kGradedSegment = 0.75;
+  bool graded = false;
+  for (const DomainLoop& loop : field.domain)
+    for (size_t k = 0; k < loop.polygon.size(); ++k)
+      graded |= (loop.polygon[(k + 1) % loop.polygon.size()] - loop.polygon[k]).norm() < kGradedSegment * params.edge_length;
+  return MeshHeightField(field, params.edge_length, mesh, graded).WithContext("surface.edge_length");
 }
 
 }  // namespace pqlayout
