@@ -111,6 +111,8 @@ class LevelSetProblem {
  private:
   Status CrossingRounds(const std::string& name = "crossing_round_", double floor = kNoFloor);
   Status FloorRounds();
+  Status SolveLocal(const std::string& name, const std::vector<char>& live_phi, const std::vector<char>& live_psi,
+                    double floor);
   // s_f of the transversality term on every face (crossing_barrier_residual.h).
   std::vector<double> SignedSines() const;
   // Closes a live set over the seam copies, so that every face whose values can move is in
@@ -295,19 +297,7 @@ Status LevelSetProblem::CrossingRounds(const std::string& prefix, double floor) 
     }
     hinge_angle_ = min_angle_ + kCrossingMargin / kDegrees;
     if (floor != kNoFloor) CloseOverCopies(&live_psi);
-    barrier_floor_ = floor;
-    ceres::Problem local;
-    AddPhiTerms(&local, &live_psi);
-    AddPsiTerms(&local, &live_psi);
-    barrier_floor_ = kNoFloor;
-    for (int v = 0; v < s_.num_vertices(); ++v) {
-      if (!live_phi[v] && local.HasParameterBlock(&phi_[v])) local.SetParameterBlockConstant(&phi_[v]);
-      if (!live_psi[v] && local.HasParameterBlock(&psi_[v])) local.SetParameterBlockConstant(&psi_[v]);
-    }
-    HoldTips(&local);
-    const std::string name = prefix + std::to_string(round + 1);
-    PQ_RETURN_IF_ERROR(levelset_internal::Solve(name, kCrossingIterations, &local, &solution_->solver[name]));
-    Project();
+    PQ_RETURN_IF_ERROR(SolveLocal(prefix + std::to_string(round + 1), live_phi, live_psi, floor));
     const LevelSetMetrics now = Measure();
     if (std::make_pair(now.foldovers, now.faces_below_min_angle) <=
         std::make_pair(best.foldovers, best.faces_below_min_angle)) {
@@ -321,6 +311,26 @@ Status LevelSetProblem::CrossingRounds(const std::string& prefix, double floor) 
   }
   phi_ = best_phi;  // a round may pass through worse states (more faces below) on its way
   psi_ = best_psi;
+  return Status::Ok();
+}
+
+// One local re-solve of the rounds: the terms touching live_psi (with a CrossingBarrierResidual
+// at `floor` on each face, unless kNoFloor), φ held outside live_phi and ψ outside live_psi,
+// kCrossingIterations Ceres iterations, the state projected onto the charts after.
+Status LevelSetProblem::SolveLocal(const std::string& name, const std::vector<char>& live_phi,
+                                   const std::vector<char>& live_psi, double floor) {
+  barrier_floor_ = floor;
+  ceres::Problem local;
+  AddPhiTerms(&local, &live_psi);
+  AddPsiTerms(&local, &live_psi);
+  barrier_floor_ = kNoFloor;
+  for (int v = 0; v < s_.num_vertices(); ++v) {
+    if (!live_phi[v] && local.HasParameterBlock(&phi_[v])) local.SetParameterBlockConstant(&phi_[v]);
+    if (!live_psi[v] && local.HasParameterBlock(&psi_[v])) local.SetParameterBlockConstant(&psi_[v]);
+  }
+  HoldTips(&local);
+  PQ_RETURN_IF_ERROR(levelset_internal::Solve(name, kCrossingIterations, &local, &solution_->solver[name]));
+  Project();
   return Status::Ok();
 }
 
@@ -377,18 +387,8 @@ Status LevelSetProblem::FloorRounds() {
         for (const int v : s_.face_vertices(f)) live[v] = 1;
     GrowRings(s_, kFloorRings, &live);
     CloseOverCopies(&live);
-    barrier_floor_ = lowest - std::max(kFloorMargin * (sin_min - lowest), kFloorMinMargin);
-    ceres::Problem local;
-    AddPhiTerms(&local, &live);
-    AddPsiTerms(&local, &live);
-    barrier_floor_ = kNoFloor;
-    for (int v = 0; v < s_.num_vertices(); ++v)
-      for (double* x : {&phi_[v], &psi_[v]})
-        if (!live[v] && local.HasParameterBlock(x)) local.SetParameterBlockConstant(x);
-    HoldTips(&local);
-    const std::string name = "floor_round_" + std::to_string(round + 1);
-    PQ_RETURN_IF_ERROR(levelset_internal::Solve(name, kCrossingIterations, &local, &solution_->solver[name]));
-    Project();
+    const double floor = lowest - std::max(kFloorMargin * (sin_min - lowest), kFloorMinMargin);
+    PQ_RETURN_IF_ERROR(SolveLocal("floor_round_" + std::to_string(round + 1), live, live, floor));
     const LevelSetMetrics now = Measure();
     if (RoundsKey(now, options_.min_angle) <= RoundsKey(best, options_.min_angle)) {
       best = now, best_phi = phi_, best_psi = psi_, since_best = 0;
