@@ -73,10 +73,17 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   }
   FigureOptions figure;
   figure.min_crossing_deg = state->config.levelset.min_angle;
+  // The sheared faces as report.json counts them: on the remeshed working mesh when the solve
+  // ran there without seams (the lines are drawn on the reference, where interpolated values
+  // can cross a little differently), else on the mesh the lines are drawn on.
+  const bool on_working = seams == nullptr && solution.working != nullptr;
+  const SolvedLevelSets solved{on_working ? *solution.working : level_surface,
+                               on_working ? solution.phi_working : phi_values,
+                               on_working ? solution.psi_working : psi_values};
   PQ_RETURN_IF_ERROR(WriteLevelSetFigure(surface, phi_values, psi_values, h, state->guidance.direction,
                                          state->guidance.weight,
                                          "Level sets: φ (black) aligned with the guidance, ψ (blue) conjugate",
-                                         out->Path("figures/levelsets.svg"), figure, seams));
+                                         out->Path("figures/levelsets.svg"), figure, seams, &solved));
   return Status::Ok();
 }
 

@@ -294,11 +294,16 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
                            const std::vector<double>& psi, double spacing,
                            const std::vector<Eigen::Vector3d>& direction,
                            const std::vector<double>& weight, const std::string& title,
-                           const std::string& path, const FigureOptions& options, const SeamCut* seams) {
+                           const std::string& path, const FigureOptions& options, const SeamCut* seams,
+                           const SolvedLevelSets* solved) {
   const int nf = surface.num_faces();
   const SurfaceModel& level_surface = seams != nullptr ? seams->cut() : surface;
   PQ_RETURN_IF_ERROR(CheckFinite(phi, level_surface.num_vertices(), "phi", "vertex").WithContext(path));
   PQ_RETURN_IF_ERROR(CheckFinite(psi, level_surface.num_vertices(), "psi", "vertex").WithContext(path));
+  if (solved != nullptr) {
+    PQ_RETURN_IF_ERROR(CheckFinite(solved->phi, solved->surface.num_vertices(), "phi", "vertex").WithContext(path));
+    PQ_RETURN_IF_ERROR(CheckFinite(solved->psi, solved->surface.num_vertices(), "psi", "vertex").WithContext(path));
+  }
   if (static_cast<int>(direction.size()) != nf)
     return Status::InvalidInput(path + ": direction has " + std::to_string(direction.size()) +
                                 " vectors, expected " + std::to_string(nf) + " (one per face)");
@@ -309,8 +314,9 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
   SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
   const std::string hatch = DrawNotEnforcedRegion(surface, weight, &canvas);
   const std::vector<LegendEntry> crossings =
-      options.min_crossing_deg > 0.0 ? DrawShallowCrossings(level_surface, phi, psi, options.min_crossing_deg, &canvas)
-                                     : std::vector<LegendEntry>{};
+      options.min_crossing_deg <= 0.0 ? std::vector<LegendEntry>{}
+      : solved != nullptr ? DrawShallowCrossings(solved->surface, solved->phi, solved->psi, options.min_crossing_deg, &canvas)
+                          : DrawShallowCrossings(level_surface, phi, psi, options.min_crossing_deg, &canvas);
   canvas.Polylines(GuidanceCurves(surface, direction, options, canvas), kFaintStreamline);
 
   // Lines h apart in the world are h · px_per_metre apart in the drawing.

@@ -65,6 +65,13 @@ Status WriteGuidanceFigure(const SurfaceModel& surface,
                            const std::vector<double>& weight, const std::string& title,
                            const std::string& path, const FigureOptions& options = {});
 
+// φ and ψ per vertex of the mesh they were solved on (WriteLevelSetFigure's crossing marks).
+struct SolvedLevelSets {
+  const SurfaceModel& surface;
+  const std::vector<double>& phi;
+  const std::vector<double>& psi;
+};
+
 // Paper Figs. 7 and 12: top view on white; faces with weight < 0.5 (alignment not
 // enforced) hatched in muted brown as in the guidance figure; evenly spaced integral curves
 // of `direction` faint grey in the background; the level lines φ = i·h (black) and ψ = j·h
@@ -79,6 +86,8 @@ Status WriteGuidanceFigure(const SurfaceModel& surface,
 // With options.min_crossing_deg > 0, the faces where φ's and ψ's lines cross at less than
 // that angle are filled light orange under the lines (sheared quads), and those where they
 // fold over (n · (∇φ × ∇ψ) ≤ 0: inverted quads) purple; legend entries only if there are any.
+// They are measured on `solved` if given (the mesh the level sets were solved on, whose faces
+// report.json counts), else on the mesh the lines are drawn on.
 // seams (optional, geometry/seams.h): φ, ψ are then per vertex of seams->cut(), the lines
 // are traced on the cut surface (they meet across the seams), and the seams are drawn in red
 // with their branch points (interior ends) as dots.
@@ -87,7 +96,7 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
                            const std::vector<Eigen::Vector3d>& direction,
                            const std::vector<double>& weight, const std::string& title,
                            const std::string& path, const FigureOptions& options = {},
-                           const SeamCut* seams = nullptr);
+                           const SeamCut* seams = nullptr, const SolvedLevelSets* solved = nullptr);
 
 // Paper Fig. 9/14: top view of the grid shell, each face filled with the mean nodal
 // compliance of its nodes, members drawn as thin dark lines, reference outline, colour bar

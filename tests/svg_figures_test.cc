@@ -281,6 +281,13 @@ TEST_F(LevelSetFigure, MarksShallowCrossingsAndFoldOvers) {
   EXPECT_GT(*std::min_element(sheared.begin(), sheared.end()), *std::max_element(hatched.begin(), hatched.end()));
   EXPECT_GT(*std::max_element(sheared.begin(), sheared.end()), 2.0 * *std::max_element(hatched.begin(), hatched.end()));
 
+  // Measured on the mesh the level sets were solved on when given: the lines drawn orthogonal,
+  // the solved ψ sheared, the marks follow the solved one.
+  const SolvedLevelSets solved{square_, phi_, psi};
+  ASSERT_TRUE(WriteLevelSetFigure(square_, phi_, psi_, h_, direction_, weight_, "solved", path, options, nullptr, &solved).ok());
+  svg = ReadText(path);
+  EXPECT_NE(svg.find("φ and ψ cross below 30° (sheared quads)"), std::string::npos);
+
   for (int v = 0; v < square_.num_vertices(); ++v) psi[v] = -square_.position(v).y() / h_;
   ASSERT_TRUE(WriteLevelSetFigure(square_, phi_, psi, h_, direction_, weight_, "folded", path, options).ok());  // ψ = −y/h
   svg = ReadText(path);
