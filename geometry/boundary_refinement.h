@@ -21,8 +21,9 @@ namespace pqlayout {
 //    below min_edge that was not there, so that fewer chords need a new vertex;
 // 2. moves boundary vertices within min_edge of a sharp kink (SharpKinkTurn) onto it, then
 //    splits every boundary edge still further than `tolerance` from the reference boundary at
-//    the sharp kink of the boundary between its ends farthest from the edge, or at the
-//    arc-length midpoint if there is none, until none is, and cuts each
+//    the sharp kink of the boundary between its ends farthest from the edge, or, if there is
+//    none, into the fewest pieces of equal arc length whose chords are within it (one vertex
+//    at a time: the first piece, then the rest again), until none is, and cuts each
 //    affected cell by the diagonal from the new vertex that gives the best pieces (ending at
 //    an interior vertex if possible, then at least min_edge long, then all angles ≥ 20°,
 //    then the most quads, then the best smallest angle).

@@ -3,6 +3,7 @@
 // polygons with straight level lines, where every answer can be checked.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -147,6 +148,63 @@ TEST(BoundaryRefinement, SharpKinksAtChordEndsInsertNoShortEdges) {
     ExpectSimpleCounterClockwiseManifold(out.mesh);
     ExpectOriginsReproducePositions(s, out);
   }
+}
+
+// The arc lengths of the mesh's boundary vertices along the disk's one boundary loop, sorted.
+std::vector<double> BoundaryArcs(const ReferenceBoundary& boundary, const ExtractedMesh& out) {
+  std::vector<double> arcs;
+  for (const auto v : out.mesh.vertices())
+    if (out.mesh.is_boundary(v)) arcs.push_back(boundary.Locate(ToEigen(out.mesh.point(v))).arc);
+  std::sort(arcs.begin(), arcs.end());
+  return arcs;
+}
+
+// Largest chord deviation of the boundary from arc `from` forward by `span`, cut into k
+// equal pieces.
+double EqualPiecesDeviation(const ReferenceBoundary& boundary, double from, double span, int k) {
+  double deviation = 0.0;
+  for (int j = 0; j < k; ++j) {
+    Eigen::Vector3d p, q;
+    boundary.PointAt(0, from + j * span / k, &p);
+    boundary.PointAt(0, from + (j + 1) * span / k, &q);
+    deviation = std::max(deviation, boundary.ChordDeviation(p, q, 0, from + j * span / k, span / k));
+  }
+  return deviation;
+}
+
+// Without slides, each chord beyond tolerance is cut into equal pieces, as few as follow the
+// boundary: one piece fewer would not. Halving (before 2026-12-03) cut a chord that needs
+// three pieces into four, one vertex and one boundary triangle more, and its pieces below
+// min_edge on the corpus' small openings.
+TEST(BoundaryRefinement, ChordsCutIntoTheFewestEqualPieces) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  const ReferenceBoundary boundary(s);
+  const double h = 2.0, tolerance = 0.01 * h, length = boundary.length(0);
+  int three_or_more = 0;
+  for (const double angle : {0.3, 1.0}) {
+    std::vector<double> phi, psi;
+    RotatedCoordinates(s, angle, h, 0.37, &phi, &psi);
+    auto [out, before] = ExtractValid(s, phi, psi, 0.2 * h);
+    const std::vector<double> ends = BoundaryArcs(boundary, out);
+    const int inserted = RefineBoundaryChords(s, tolerance, 0.0, 0.2 * h, &out);
+    const std::vector<double> after = BoundaryArcs(boundary, out);
+    ASSERT_EQ(after.size(), ends.size() + inserted);
+    for (size_t i = 0; i < ends.size(); ++i) {
+      const double from = ends[i], forward = std::fmod(ends[(i + 1) % ends.size()] - from + length, length);
+      std::vector<double> inside;  // the inserted vertices' offsets along this chord
+      for (const double a : after) {
+        const double offset = std::fmod(a - from + length, length);
+        if (offset > 1e-9 && offset < forward - 1e-9) inside.push_back(offset);
+      }
+      std::sort(inside.begin(), inside.end());
+      const int k = static_cast<int>(inside.size()) + 1;
+      for (int j = 1; j < k; ++j) EXPECT_NEAR(inside[j - 1], j * forward / k, 1e-6 * forward) << "chord " << i;
+      EXPECT_LE(EqualPiecesDeviation(boundary, from, forward, k), tolerance + 1e-12) << "chord " << i;
+      if (k > 1) EXPECT_GT(EqualPiecesDeviation(boundary, from, forward, k - 1), tolerance) << "chord " << i;
+      three_or_more += k >= 3;
+    }
+  }
+  EXPECT_GT(three_or_more, 0);  // the case halving got wrong is there
 }
 
 }  // namespace

@@ -49,8 +49,9 @@ const CorpusCase kCases[] = {
     // 0.13 → 0.20 h (met), min crossing 25.3° → 27.4°, area below 30° 1.9 % → 0.01 %, no floor
     // rounds; curvature: min crossing 23.8° → 28.0°, area 9.2 % → 0.07 %, alignment 16.9° → 14.0°.
     {"hole_offcentre", "strain", {{"alignment", 18.0}, {"spacing_cv", 0.514}}},
-    {"hole_offcentre", "curvature",
-     {{"alignment", 17.5}, {"quad_fraction", 0.72}, {"interior_non_quads", 7}, {"edge_min_h", 0.149}}},
+    // Curved chords cut into the fewest equal pieces (geometry/boundary_refinement.cc) since
+    // 2026-12-03, not halved: edge_min_h 0.187 → 0.213 h (met), quads 0.773 → 0.778.
+    {"hole_offcentre", "curvature", {{"alignment", 17.5}, {"quad_fraction", 0.72}, {"interior_non_quads", 7}}},
     // The floor rounds: min crossing 10.1° → 27.9° (met), area below 30° 0.3 % → 0.6 %.
     {"hypar", "strain", {{"alignment", 17.0}, {"quad_fraction", 0.72}}},
     {"hypar", "curvature", {}},
@@ -61,8 +62,11 @@ const CorpusCase kCases[] = {
     // Openings drawn as circles: the smaller (r = 1.1 h) keeps chords within 0.01 h only below
     // 0.29 h, so the chord refinement adds vertices there (quads 0.77 → 0.73 strain, 0.82 →
     // 0.79 curvature; shortest edges 0.15 h and 0.09 h), no interior non-quad, no floor rounds.
-    {"two_holes", "strain", {{"alignment", 11.0}, {"quad_fraction", 0.68}, {"edge_min_h", 0.118}}},
-    {"two_holes", "curvature", {{"quad_fraction", 0.74}, {"edge_min_h", 0.073}}},
+    // Chords cut into the fewest equal pieces, not halved: 10 vertices (and triangles) fewer
+    // each, quads 0.727 → 0.744 (strain), 0.793 → 0.816 (curvature, met); the shortest edges
+    // left are a 0.30 h chord in halves (strain) and a crossing 0.09 h inside the rim.
+    {"two_holes", "strain", {{"alignment", 11.0}, {"quad_fraction", 0.69}, {"edge_min_h", 0.121}}},
+    {"two_holes", "curvature", {{"edge_min_h", 0.073}}},
     // The floor rounds: min crossing 18.8° → 25.3° (met), area below 30° 28 % → 5.4 %
     // (strain); 23.2° → 26.4° (met), 0.3 % → 1.25 % (curvature).
     {"wavy", "strain",
