@@ -12,6 +12,8 @@
 
 namespace pqlayout {
 
+constexpr double kLittleGain = 0.01;  // a compliance drop below this (relative) is warned about
+
 Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
   const StiffenOptions& options = state->config.stiffen;
   const double target = state->config.planarize.target_delta;
@@ -39,6 +41,13 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
             << report.kink_mean_deg_before << "° → " << report.kink_mean_deg_after << "°, max "
             << report.kink_max_deg_before << "° → " << report.kink_max_deg_after << "°, steel "
             << report.steel_mass_change * 100.0 << " %";
+  // A stage that gains (almost) nothing says why, rather than leaving ×0.99x to be read as
+  // "this shell is as stiff as it gets": on the corpus and the Great Court stiffen gains
+  // 4–48 %; a Wolfe line search that finds no step it can make planar again gains 0.
+  if (!report.kept_planarised && report.compliance_ratio > 1.0 - kLittleGain)
+    LOG(WARNING) << "stiffen: the compliance fell by only " << (1.0 - report.compliance_ratio) * 100.0 << " % ("
+                 << report.iterations << " iterations; " << report.stop
+                 << "): more room (stiffen.tolerance, stiffen.slide) or another layout may do better";
   if (report.planarity_max > target)
     LOG(WARNING) << "stiffen: δ max " << report.planarity_max << " is above planarize.target_delta " << target;
   if (report.closeness_max > options.tolerance)

@@ -57,6 +57,7 @@ nlohmann::json StiffenReport::ToJson() const {
           {"evaluations", evaluations},
           {"held_vertices", held_vertices},
           {"kept_planarised", kept_planarised},
+          {"stop", stop},
           {"frame_seconds", seconds_frame},
           {"ceres_seconds", seconds_ceres},
           {"buckling_factor_before", check(checks_before, "buckling_factor")},
@@ -307,6 +308,7 @@ Status Minimise(const Objective& F, double allowed, const StiffenOptions& option
     const int iterations = std::max(1, static_cast<int>(summary.iterations.size()) - 1);
     report->iterations += iterations, budget -= iterations;
     run_ends->push_back(F.box().Local(z.data()));
+    report->stop = progress.converged() ? "converged" : summary.message;
     LOG(INFO) << "stiffen: L-BFGS run " << run << ": " << iterations << " iterations, objective "
               << progress.run_first() << " → " << progress.run_last() << " (" << summary.message << ")";
     if (progress.converged() || (summary.termination_type == ceres::FAILURE && iterations <= 1)) break;
@@ -316,15 +318,17 @@ Status Minimise(const Objective& F, double allowed, const StiffenOptions& option
   return Status::Ok();
 }
 
-// Never hands on a shell whose panels are less planar than the target (or than the start):
-// the last run's end made planar again (RestorePlanarity), else the latest earlier run's end
-// that can be (on a 112k-triangle Great Court reference the last run ended at δ 0.0022 that
-// no projection inside the boxes brings below 0.001, while the first run's end, C/C₀ 0.73,
-// could), else the start.
-Status KeepPlanar(const StiffenProblem& P, double target_delta, const std::vector<Vec3>& q_start,
-                  const std::vector<std::vector<Vec3>>& run_ends, std::vector<Vec3>* q, StiffenReport* report) {
-  const double start_delta = MaxPlanarity(P, World(P, q_start));
-  const double allowed = std::max(target_delta, start_delta);
+// Never hands on a shell whose panels are less planar than the target (or than the planarised
+// shell, x0): the last run's end made planar again (RestorePlanarity), else the latest earlier
+// run's end that can be (on a 112k-triangle Great Court reference the last run ended at δ 0.0022
+// that no projection inside the boxes brings below 0.001, while the first run's end, C/C₀ 0.73,
+// could), else the start, marked kept_planarised (StiffenMesh then hands on x0 itself: the
+// start has every vertex farther than the tolerance pulled in, which can break its panels'
+// planarity, δ 0.0016 at 5 mm on the Great Court).
+Status KeepPlanar(const StiffenProblem& P, double target_delta, const std::vector<Vec3>& x0,
+                  const std::vector<Vec3>& q_start, const std::vector<std::vector<Vec3>>& run_ends,
+                  std::vector<Vec3>* q, StiffenReport* report) {
+  const double allowed = std::max(target_delta, MaxPlanarity(P, x0));
   for (auto end = run_ends.rbegin(); end != run_ends.rend(); ++end) {
     std::vector<Vec3> candidate = *end;
     PQ_RETURN_IF_ERROR(RestorePlanarity(P, target_delta, &candidate));
@@ -347,9 +351,8 @@ Status KeepPlanar(const StiffenProblem& P, double target_delta, const std::vecto
 }
 
 void Measure(const StiffenProblem& P, const ClosestPointQuery& query, const std::vector<Vec3>& x0,
-             const GridCompliance& first, const GridCompliance& last, const std::vector<Vec3>& q, PolyMesh* mesh,
+             const GridCompliance& first, const GridCompliance& last, const std::vector<Vec3>& x, PolyMesh* mesh,
              StiffenReport* r) {
-  const std::vector<Vec3> x = World(P, q);
   r->compliance_before = first.compliance;
   r->compliance_after = last.compliance;
   r->compliance_ratio = r->compliance_after / r->compliance_before;
@@ -427,6 +430,7 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
   GridCompliance first;
   SetPoints(World(P, q), &mesh->mesh);
   PQ_RETURN_IF_ERROR(EvaluateGridCompliance(mesh->mesh, restraints, analysis, false, &first).WithContext("stiffen"));
+  if (report->held_vertices == static_cast<int>(x0.size())) report->stop = "no room: every vertex is held";
   if (options.tolerance > 0.0 && options.max_iterations > 0 && report->held_vertices < static_cast<int>(x0.size())) {
     const Objective F(P, restraints, analysis, first.compliance, frame, &mesh->mesh, report);
     const std::vector<Vec3> q_start = q;
@@ -438,11 +442,24 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
     }
     std::vector<std::vector<Vec3>> run_ends;
     PQ_RETURN_IF_ERROR(Minimise(F, kPlanarityMargin * target_delta, options, &q, &run_ends, report));
-    PQ_RETURN_IF_ERROR(KeepPlanar(P, target_delta, q_start, run_ends, &q, report));
+    PQ_RETURN_IF_ERROR(KeepPlanar(P, target_delta, x0, q_start, run_ends, &q, report));
   }
+  std::vector<Vec3> x = World(P, q);
   GridCompliance last;
-  SetPoints(World(P, q), &mesh->mesh);
+  SetPoints(x, &mesh->mesh);
   PQ_RETURN_IF_ERROR(EvaluateGridCompliance(mesh->mesh, restraints, analysis, false, &last).WithContext("stiffen"));
+  // Nor one that is softer than where it started (the start can differ from the planarised
+  // shell, see KeepPlanar): then the planarised shell itself, before = after.
+  if (report->kept_planarised || last.compliance > first.compliance) {
+    if (!report->kept_planarised)
+      LOG(WARNING) << "stiffen: the reshaped shell is softer than the planarised one (" << last.compliance << " J vs "
+                   << first.compliance << " J); keeping the planarised shell";
+    report->kept_planarised = true;
+    x = x0;
+    SetPoints(x, &mesh->mesh);
+    PQ_RETURN_IF_ERROR(EvaluateGridCompliance(mesh->mesh, restraints, analysis, false, &last).WithContext("stiffen"));
+    first = last;
+  }
   if (report->iterations > 0) {  // what the reshaping did to buckling, utilisation and deflection
     StructuralChecks before, after;
     PQ_RETURN_IF_ERROR(RunStructuralChecks(first.frame, first.result, analysis, &before, false).WithContext("stiffen"));
@@ -456,7 +473,7 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
   if (last.frame.joints != first.frame.joints)  // the hinges are penalties: say so if one gave way
     LOG(WARNING) << "stiffen: the frame has " << last.frame.joints << " joints after, " << first.frame.joints
                  << " before (a member became shorter than the section depth, or a joint longer)";
-  Measure(P, query, x0, first, last, q, &mesh->mesh, report);
+  Measure(P, query, x0, first, last, x, &mesh->mesh, report);
   return Status::Ok();
 }
 

@@ -41,6 +41,7 @@
 // grid (0.79 vs 0.74, measured with the augmented Lagrangian).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -61,9 +62,13 @@ struct StiffenReport {
   double kink_mean_deg_before = 0.0, kink_max_deg_before = 0.0;  // angle between neighbouring face normals
   double kink_mean_deg_after = 0.0, kink_max_deg_after = 0.0;
   double steel_mass_change = 0.0;                  // (after − before) / before
-  // The optimised shell could not be brought back within planarize.target_delta, so the
-  // planarised one was kept (a warning says so; compliance_ratio is then 1).
+  // The optimised shell could not be brought back within planarize.target_delta, or was
+  // softer than its start, so the planarised one was kept (a warning says so; compliance_ratio
+  // is then 1).
   bool kept_planarised = false;
+  // Why the minimisation ended: "converged" (its window test), "no room" (every vertex held),
+  // or the last L-BFGS run's Ceres message, e.g. a line search that found no step.
+  std::string stop;
   double min_member_length = 0.0;                  // after, m
   int iterations = 0, evaluations = 0, held_vertices = 0;
   double seconds_frame = 0.0, seconds_ceres = 0.0;
