@@ -52,7 +52,8 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
     LOG(WARNING) << "stiffen: δ max " << report.planarity_max << " is above planarize.target_delta " << target;
   if (report.closeness_max > options.tolerance)
     LOG(WARNING) << "stiffen: a vertex is " << report.closeness_max << " m from the reference, more than stiffen.tolerance "
-                 << options.tolerance << " m: planarize left it there and it could not move (held: boundary or no room)";
+                 << options.tolerance << " m: planarize left it there, and stiffen moves such a vertex only inwards (or "
+                    "holds it: boundary, no room)";
   const PolyMesh& mesh = state->shell.mesh;
   PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads"));
   PQ_RETURN_IF_ERROR(WriteOffsetFigure(*state->surface, mesh, report.normal_offset, options.tolerance,

@@ -55,10 +55,13 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
       P->lower[v] = P->upper[v] = local;
       continue;
     }
+    // A planarised vertex farther than t off the reference (planarize's closeness target is
+    // 0.02 h, more than a tight tolerance) starts where it is, on the edge of its box: it may
+    // come in, never go farther out. Pulling it in at the start bent the panels it belongs to
+    // (δ 0.0016 on the Great Court at t = 5 mm), which no retraction inside the boxes undid.
     const double s = std::sqrt(normal_room);
-    P->lower[v] = Vec3(local[0] - slide, local[1] - slide, -s);
-    P->upper[v] = Vec3(local[0] + slide, local[1] + slide, s);
-    local[2] = std::clamp(local[2], -s, s);  // a planarised vertex farther than t comes in
+    P->lower[v] = Vec3(local[0] - slide, local[1] - slide, std::min(-s, local[2]));
+    P->upper[v] = Vec3(local[0] + slide, local[1] + slide, std::max(s, local[2]));
   }
 }
 

@@ -204,11 +204,13 @@ TEST(Stiffen, LittleRoomGainsLittleAndTheReportSaysWhyItStopped) {
   EXPECT_EQ(report.stop.rfind("no room", 0), 0u) << report.stop;
 }
 
-// A planar (flat) grid 0.3 m under its reference at the middle, with 0.1 m of room: the start
-// pulls every vertex within the tolerance, which bends the panels (δ far above the target).
-// The stage may hand on a reshaped shell only if its panels are as planar as the target and it
-// is stiffer; else the planarised shell itself, bit for bit (it once handed on the bent start:
-// δ 0.0016 on the Great Court at stiffen.tolerance 5 mm, and a compliance 0.03 % higher).
+// A planar (flat) grid 0.3 m under its reference at the middle, with 0.1 m of room: the
+// vertices farther off than that may come in, never go farther out, and the stage may hand on
+// a reshaped shell only if its panels are as planar as the target and it is stiffer; else the
+// planarised shell itself, bit for bit. (Once the start pulled every vertex within the
+// tolerance, bending the panels, and handed that on: δ 0.0198 here, 0.0016 on the Great Court
+// at stiffen.tolerance 5 mm, with a compliance 0.03 % higher. Now the Great Court gains × 0.97
+// at 5 mm, δ within the target.)
 TEST(Stiffen, NeverHandsOnBentPanelsOrASofterShell) {
   ShallowRoof roof(0.3);
   for (const auto v : roof.grid.mesh.vertices()) {
@@ -225,7 +227,13 @@ TEST(Stiffen, NeverHandsOnBentPanelsOrASofterShell) {
   std::cout << "C/C0 " << report.compliance_ratio << ", δ max " << report.planarity_max << ", kept planarised "
             << report.kept_planarised << ", stop: " << report.stop << "\n";
   EXPECT_LE(report.planarity_max, target);
-  EXPECT_LE(report.compliance_ratio, 1.0);
+  EXPECT_LT(report.compliance_ratio, 0.995);  // it gains: the vertices within reach move
+  EXPECT_FALSE(report.kept_planarised);
+  const ClosestPointQuery query(roof.reference);
+  for (const auto v : before.vertices())  // never farther off than the tolerance or than it was
+    EXPECT_LE(query.OnSurface(ToEigen(roof.grid.mesh.point(v))).distance,
+              std::max(options.tolerance, query.OnSurface(ToEigen(before.point(v))).distance) + 1e-9)
+        << v.idx();
   if (report.kept_planarised) {
     EXPECT_EQ(report.compliance_ratio, 1.0);
     for (const auto v : before.vertices())
