@@ -73,6 +73,7 @@ struct ExtractionStats {
   int refined_boundary_edges = 0;        // boundary vertices inserted where a chord left a curved boundary
   int slid_boundary_vertices = 0;        // boundary vertices moved along the boundary to even out chords
   int caps = 0;                          // holes of poles closed by one polygon (geometry/cap_fill.h)
+  int braced_quads = 0;                  // quads on a free edge cut into two triangles (geometry/edge_bracing.h)
   // Seams: piece edges on a seam with no piece of the corresponding cell on the other side
   // (0 when the values satisfy the transitions; otherwise the mesh has a slit there).
   int unmatched_seam_edges = 0;

@@ -11,12 +11,14 @@
 #include "geometry/boundary_refinement.h"
 #include "geometry/cap_fill.h"
 #include "geometry/closest_point.h"
+#include "geometry/edge_bracing.h"
 #include "geometry/mesh_io.h"
 #include "geometry/planarity.h"
 #include "geometry/quad_extraction.h"
 #include "report/svg_canvas.h"
 #include "report/figures.h"
 #include "pipeline/stages.h"
+#include "problems/grid_frame.h"
 
 namespace pqlayout {
 namespace {
@@ -83,7 +85,8 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"floating_faces", stats.floating_faces},
           {"unmatched_seam_edges", stats.unmatched_seam_edges},
           {"seam_transition_mismatch", stats.seam_transition_mismatch},
-          {"rejected_faces", stats.rejected_faces}};
+          {"rejected_faces", stats.rejected_faces},
+          {"braced_quads", stats.braced_quads}};
 }
 
 // A mesh extracted on the level-set stage's working mesh (seams on a remeshed reference):
@@ -139,6 +142,13 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   }
   RefineBoundaryChords(surface, options.boundary_tolerance * h, kBoundarySlide * h,
                        options.min_edge * h, &quads);
+  if (options.brace_free_edges) {  // a vertex is free if its support condition restrains nothing
+    const std::vector<Restraints> restraints = VertexRestraints(quads, surface, state->supports);
+    std::vector<bool> free(restraints.size());
+    for (size_t v = 0; v < free.size(); ++v)
+      free[v] = quads.origin[v].on_boundary && std::none_of(restraints[v].begin(), restraints[v].end(), [](bool r) { return r; });
+    LOG(INFO) << "extract: " << BraceFreeEdges(free, &quads) << " quads on free edges cut into triangles (extract.brace_free_edges)";
+  }
   if (quads.mesh.n_faces() == 0)
     return Status::Internal("extract: no faces (do the level sets φ, ψ cross any integer level?)");
   const ExtractedMeshMetrics m = MeasureExtractedMesh(surface, quads, options.corner_angle);

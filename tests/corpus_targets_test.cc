@@ -14,6 +14,7 @@
 // round the Reading Room (18.6°, quad fraction 0.68) and must meet every target.
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <map>
 #include <string>
 #include <vector>
@@ -137,6 +138,27 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
     if (c.source == "strain") EXPECT_EQ(levelset.at("seams").at("uncut_ring_holes"), 1);
   }
   std::cout << c.roof << " × " << c.source << ": " << met << " of 11 targets met\n";
+}
+
+// extract.brace_free_edges on the barrel vault (free gables, fixed long sides): the quads on
+// the gables are cut (no more than the two gable rows hold), and no interior cell changes.
+TEST(FreeEdgeBracing, CutsTheBarrelsGableRowsOnly) {
+  Config config;
+  ASSERT_TRUE(LoadConfig(PQLAYOUT_SOURCE_DIR "/examples/corpus/barrel.yaml", {"extract.brace_free_edges=true"}, &config).ok());
+  RunOptions run;
+  run.out_dir = testing::TempDir() + "/corpus_barrel_braced";
+  run.until = Stage::kExtract;
+  run.commit = false;
+  nlohmann::json report;
+  ASSERT_TRUE(RunPipeline(config, run, &report).ok());
+  const nlohmann::json& extract = report.at("stages").at("extract");
+  const int braced = extract.at("braced_quads");
+  const int triangles = extract.at("face_sides").value("3", 0);
+  std::cout << "barrel braced: " << braced << " quads cut, " << triangles << " triangles\n";
+  EXPECT_GE(braced, 10);  // two gables, ~13 panels across each (25 measured)
+  EXPECT_LE(braced, 30);
+  EXPECT_GE(triangles, 2 * braced);
+  EXPECT_TRUE(extract.at("interior_non_quads").empty());
 }
 
 INSTANTIATE_TEST_SUITE_P(Roofs, CorpusTargets, ::testing::ValuesIn(kCases),
