@@ -322,9 +322,9 @@ Status Minimise(const Objective& F, double allowed, const StiffenOptions& option
 // shell, x0): the last run's end made planar again (RestorePlanarity), else the latest earlier
 // run's end that can be (on a 112k-triangle Great Court reference the last run ended at δ 0.0022
 // that no projection inside the boxes brings below 0.001, while the first run's end, C/C₀ 0.73,
-// could), else the start, marked kept_planarised (StiffenMesh then hands on x0 itself: the
-// start has every vertex farther than the tolerance pulled in, which can break its panels'
-// planarity, δ 0.0016 at 5 mm on the Great Court).
+// could), else the start, marked kept_planarised (StiffenMesh then hands on x0 itself, bit for
+// bit). Comparing with the start instead of x0 once let a start whose vertices had been pulled
+// inside a tight tolerance hand on bent panels (δ 0.0016 at 5 mm on the Great Court).
 Status KeepPlanar(const StiffenProblem& P, double target_delta, const std::vector<Vec3>& x0,
                   const std::vector<Vec3>& q_start, const std::vector<std::vector<Vec3>>& run_ends,
                   std::vector<Vec3>* q, StiffenReport* report) {
