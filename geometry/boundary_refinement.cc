@@ -285,19 +285,6 @@ int SnapToSharpKinks(const ReferenceBoundary& boundary, double min_turn, double 
   return moved;
 }
 
-// The polygon mesh of `faces` on `position`; a face OpenMesh refuses is counted in *rejected.
-PolyMesh BuildPolyMesh(const std::vector<Eigen::Vector3d>& position, const std::vector<std::vector<int>>& faces,
-                       int* rejected) {
-  PolyMesh refined;
-  for (const auto& q : position) refined.add_vertex(ToOpenMesh(q));
-  for (const auto& face : faces) {
-    std::vector<VertexHandle> handles;
-    for (const int v : face) handles.push_back(VertexHandle(v));
-    if (!refined.add_face(handles).is_valid()) ++*rejected;
-  }
-  return refined;
-}
-
 // The fewest equal pieces (2 to kMaxPieces) into which the boundary from arc `from` forward by
 // `span` must be cut for every piece's chord to lie within tolerance (kMaxPieces if none do).
 int PiecesNeeded(const ReferenceBoundary& boundary, int loop, double from, double span, double tolerance) {

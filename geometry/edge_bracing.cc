@@ -10,8 +10,7 @@ int BraceFreeEdges(const std::vector<bool>& free, ExtractedMesh* out) {
   const PolyMesh& mesh = out->mesh;
   std::vector<Eigen::Vector3d> position;
   for (const auto v : mesh.vertices()) position.push_back(ToEigen(mesh.point(v)));
-  PolyMesh braced;
-  for (const auto& p : position) braced.add_vertex(ToOpenMesh(p));
+  std::vector<std::vector<int>> faces;
   int cut = 0;
   for (const auto f : mesh.faces()) {
     std::vector<int> face;
@@ -31,14 +30,10 @@ int BraceFreeEdges(const std::vector<bool>& free, ExtractedMesh* out) {
       pieces = smallest(by_02) >= smallest(by_13) ? by_02 : by_13;
       ++cut;
     }
-    for (const auto& piece : pieces) {
-      std::vector<VertexHandle> handles;
-      for (const int v : piece) handles.push_back(VertexHandle(v));
-      if (!braced.add_face(handles).is_valid()) ++out->stats.rejected_faces;
-    }
+    faces.insert(faces.end(), pieces.begin(), pieces.end());
   }
   if (cut == 0) return 0;
-  out->mesh = std::move(braced);
+  out->mesh = BuildPolyMesh(position, faces, &out->stats.rejected_faces);
   out->stats.braced_quads += cut;
   return cut;
 }

@@ -6,6 +6,8 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include <vector>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -29,5 +31,19 @@ using HalfedgeHandle = OpenMesh::HalfedgeHandle;
 
 inline Eigen::Vector3d ToEigen(const OpenMesh::Vec3d& p) { return {p[0], p[1], p[2]}; }
 inline OpenMesh::Vec3d ToOpenMesh(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+// The polygon mesh of `faces` (vertex indices into `position`); each face OpenMesh refuses
+// (it would be non-manifold) is left out and counted in *rejected.
+inline PolyMesh BuildPolyMesh(const std::vector<Eigen::Vector3d>& position,
+                              const std::vector<std::vector<int>>& faces, int* rejected) {
+  PolyMesh mesh;
+  for (const auto& p : position) mesh.add_vertex(ToOpenMesh(p));
+  for (const auto& face : faces) {
+    std::vector<VertexHandle> handles;
+    for (const int v : face) handles.push_back(VertexHandle(v));
+    if (!mesh.add_face(handles).is_valid()) ++*rejected;
+  }
+  return mesh;
+}
 
 }  // namespace pqlayout

@@ -190,14 +190,8 @@ void CleanUpAndBuild(double min_edge_length, bool pair_boundary_triangles, Polyg
   out->stats.floating_faces = DropFloatingParts(&polygons);
   Compact(&polygons);
 
-  PolyMesh& mesh = out->mesh;
-  for (const auto& p : polygons.position) mesh.add_vertex(ToOpenMesh(p));
+  out->mesh = BuildPolyMesh(polygons.position, polygons.faces, &out->stats.rejected_faces);
   out->origin = polygons.origin;
-  for (const auto& face : polygons.faces) {
-    std::vector<VertexHandle> handles;
-    for (const int v : face) handles.push_back(VertexHandle(v));
-    if (!mesh.add_face(handles).is_valid()) ++out->stats.rejected_faces;
-  }
 }
 
 // The centre vertices SplitLargePolygons added moved from their polygon's centroid onto the
