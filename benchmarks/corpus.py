@@ -176,7 +176,9 @@ def write_markdown(rows, path, sets):
             cells = []
             for source in ("strain", "curvature"):
                 f = figures.get((roof, source))
-                cells.append(f"![{roof} × {source}]({Path(os.path.relpath(f, path.parent)).as_posix()})" if f else "")
+                # relative to benchmarks/, where corpus.md lives in the repository, wherever --out wrote it
+                cells.append(f"![{roof} × {source}]({Path(os.path.relpath(Path(f).resolve(), HERE.resolve())).as_posix()})"
+                             if f else "")
             lines.append(f"| {roof} | " + " | ".join(cells) + " |")
     path.write_text("\n".join(lines) + "\n")
     print(f"wrote {path} and {path.with_suffix('.csv')}: all targets met in {met} of {len(rows)} runs")
