@@ -234,7 +234,8 @@ KeyTable::KeyTable(Config* c) {
   Number("extract.corner_angle", &c->extract.corner_angle, Range{0.0, 180.0, true, true}, "boundary turning angle above which a vertex is a corner, degrees");
   Number("extract.min_edge", &c->extract.min_edge, Range{0.0, 1.0, false, true}, "edges shorter than min_edge × h are merged");
   Number("extract.boundary_tolerance", &c->extract.boundary_tolerance, Range{0.0, 1.0, false, true}, "mesh boundary edges further than this × h from a curved reference boundary get an extra boundary vertex (0: never)");
-  Bool("extract.brace_free_edges", &c->extract.brace_free_edges, "cut every quad with an edge on a free (unsupported) stretch of the boundary into two triangles: a braced edge row (the barrel with free gables: compliance × 0.53), fewer quads");
+  Choice("extract.brace_free_edges", &c->extract.brace_free_edges, {"none", "paying", "all"},
+         "quads on a free (unsupported) stretch of the boundary cut into two triangles: none; paying: after stiffen, a stretch at a time, kept where the stiffened shell's compliance drops ≥ 1 % (the barrel with free gables: × 0.54); all: every stretch, at extraction");
 
   auto& pw = c->planarize.weights;
   Number("planarize.weights.planarity", &pw.planarity, NonNegative(kMaxWeight), "faces planar");

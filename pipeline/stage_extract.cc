@@ -18,6 +18,7 @@
 #include "report/svg_canvas.h"
 #include "report/figures.h"
 #include "pipeline/stages.h"
+#include "problems/edge_bracing_choice.h"
 #include "problems/grid_frame.h"
 
 namespace pqlayout {
@@ -142,11 +143,8 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   }
   RefineBoundaryChords(surface, options.boundary_tolerance * h, kBoundarySlide * h,
                        options.min_edge * h, &quads);
-  if (options.brace_free_edges) {  // a vertex is free if its support condition restrains nothing
-    const std::vector<Restraints> restraints = VertexRestraints(quads, surface, state->supports);
-    std::vector<bool> free(restraints.size());
-    for (size_t v = 0; v < free.size(); ++v)
-      free[v] = quads.origin[v].on_boundary && std::none_of(restraints[v].begin(), restraints[v].end(), [](bool r) { return r; });
+  if (options.brace_free_edges == "all") {  // "paying" is decided after stiffen (stage_stiffen.cc)
+    const std::vector<bool> free = FreeBoundaryVertices(quads, VertexRestraints(quads, surface, state->supports));
     LOG(INFO) << "extract: " << BraceFreeEdges(free, &quads) << " quads on free edges cut into triangles (extract.brace_free_edges)";
   }
   if (quads.mesh.n_faces() == 0)

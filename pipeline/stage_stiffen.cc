@@ -4,7 +4,11 @@
 // the planarised mesh) and the 3D view of the final shell.
 #include <glog/logging.h>
 
+#include <functional>
+#include <vector>
+
 #include "report/figures.h"
+#include "problems/edge_bracing_choice.h"
 #include "problems/grid_frame.h"
 #include "problems/planarize.h"
 #include "pipeline/stages.h"
@@ -14,6 +18,39 @@ namespace pqlayout {
 
 constexpr double kLittleGain = 0.01;  // a compliance drop below this (relative) is warned about
 
+namespace {
+
+// extract.brace_free_edges = paying: each free stretch's quads cut and the shell stiffened
+// again, kept where that lowers the compliance (problems/edge_bracing_choice.h); `report` is
+// the kept trial's. bracing: report.json's stages.stiffen.bracing.
+Status BraceWherePaysAfterStiffen(const std::vector<Restraints>& restraints,
+                                  const std::function<Status(ExtractedMesh*, StiffenReport*)>& stiffen,
+                                  ExtractedMesh* shell, StiffenReport* report, nlohmann::json* bracing) {
+  std::vector<StiffenReport> reports;
+  const auto evaluate = [&](ExtractedMesh* mesh, double* compliance) {
+    reports.emplace_back();
+    PQ_RETURN_IF_ERROR(stiffen(mesh, &reports.back()));
+    *compliance = reports.back().compliance_after;
+    return Status::Ok();
+  };
+  BracingChoice choice;
+  PQ_RETURN_IF_ERROR(BraceWherePays(FreeBoundaryVertices(*shell, restraints), evaluate, shell, &choice));
+  *report = reports[choice.kept_trial];
+  *bracing = {{"free_stretches", choice.stretches},      {"braced_stretches", choice.braced_stretches},
+              {"braced_quads", choice.braced_quads},     {"trials", choice.trials},
+              {"compliance_unbraced", choice.compliance_unbraced},
+              {"compliance_ratio", choice.compliance / choice.compliance_unbraced},
+              {"trial_ratios", choice.ratio}};
+  if (choice.stretches > 0)
+    LOG(INFO) << "stiffen: " << choice.braced_stretches << " of " << choice.stretches
+              << " free stretches braced (extract.brace_free_edges = paying: " << choice.braced_quads
+              << " quads cut into triangles), compliance after stiffen " << choice.compliance_unbraced << " → "
+              << choice.compliance << " J in " << choice.trials << " stiffen runs";
+  return Status::Ok();
+}
+
+}  // namespace
+
 Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
   const StiffenOptions& options = state->config.stiffen;
   const double target = state->config.planarize.target_delta;
@@ -22,10 +59,19 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   if (options.tolerance > 0.0)
     LOG(INFO) << "stiffen: vertices may move " << options.tolerance << " m off the reference (and slide "
               << options.slide << " m along it), " << options.max_iterations << " iterations at most";
-  PQ_RETURN_IF_ERROR(StiffenMesh(*state->surface, VertexRestraints(state->planarized, *state->surface, state->supports),
-                                 state->config.analysis, options, target, state->config.layout.spacing, &state->shell,
-                                 &report));
+  const std::vector<Restraints> restraints = VertexRestraints(state->planarized, *state->surface, state->supports);
+  const auto stiffen = [&](ExtractedMesh* mesh, StiffenReport* r) {
+    return StiffenMesh(*state->surface, restraints, state->config.analysis, options, target,
+                       state->config.layout.spacing, mesh, r);
+  };
+  nlohmann::json bracing;
+  if (state->config.extract.brace_free_edges == "paying") {
+    PQ_RETURN_IF_ERROR(BraceWherePaysAfterStiffen(restraints, stiffen, &state->shell, &report, &bracing));
+  } else {
+    PQ_RETURN_IF_ERROR(stiffen(&state->shell, &report));
+  }
   *metrics = report.ToJson();
+  if (!bracing.is_null()) (*metrics)["bracing"] = bracing;
   state->normal_offset = report.normal_offset;  // for report.html's 3D view
   (*metrics)["tolerance"] = options.tolerance;
   if (options.tolerance == 0.0) {

@@ -105,7 +105,7 @@ struct ExtractOptions {
   double corner_angle = 30.0;  // boundary turning angle above which a vertex is a corner, degrees
   double min_edge = 0.2;       // edges shorter than min_edge × h are merged
   double boundary_tolerance = 0.01;  // boundary edges further than this × h from the reference boundary are split
-  bool brace_free_edges = false;     // quads on a free stretch of the boundary cut into two triangles
+  std::string brace_free_edges = "paying";  // none | paying (stretches whose bracing lowers C after stiffen ≥ 1 %) | all
 };
 
 struct PlanarizeWeights {

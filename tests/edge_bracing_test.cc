@@ -5,29 +5,14 @@
 #include <vector>
 
 #include "geometry/edge_bracing.h"
+#include "tests/extraction_test_helpers.h"
 
 namespace pqlayout {
 namespace {
 
 // 3 × 3 parallelograms (shear 0.4: the diagonal (i+1, j)–(i, j+1) is the shorter one, and
-// cutting along it gives the better triangles), vertices row by row, the top row y = 3.
-ExtractedMesh ShearedGrid() {
-  ExtractedMesh out;
-  std::vector<VertexHandle> v;
-  for (int j = 0; j <= 3; ++j)
-    for (int i = 0; i <= 3; ++i) {
-      v.push_back(out.mesh.add_vertex(ToOpenMesh(Eigen::Vector3d(i + 0.4 * j, j, 0.0))));
-      QuadMeshVertex origin;
-      origin.on_boundary = i == 0 || j == 0 || i == 3 || j == 3;
-      out.origin.push_back(origin);
-    }
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) {
-      const int k = 4 * j + i;
-      out.mesh.add_face(std::vector<VertexHandle>{v[k], v[k + 1], v[k + 5], v[k + 4]});
-    }
-  return out;
-}
+// cutting along it gives the better triangles).
+ExtractedMesh ShearedGrid() { return extraction_test::QuadGrid3(0.4); }
 
 int FacesWithSides(const PolyMesh& mesh, size_t sides) {
   int count = 0;
@@ -75,6 +60,38 @@ TEST(EdgeBracing, OnlyBoundaryEdgesCount) {
   free[5] = free[6] = true;  // interior vertices joined by an interior edge
   EXPECT_EQ(BraceFreeEdges(free, &out), 0);
   EXPECT_EQ(FacesWithSides(out.mesh, 4), 9);
+}
+
+// Stretches: the top row and the right column are free, joined at the top-right corner (one
+// stretch); with the corner vertex supported they are two, and the corner quad, whose two
+// boundary edges both end at the supported corner, is on neither.
+TEST(EdgeBracing, QuadsAreGroupedByFreeStretch) {
+  const ExtractedMesh grid = ShearedGrid();
+  std::vector<bool> free(16, false);
+  for (int i = 0; i <= 3; ++i) free[12 + i] = free[4 * i + 3] = true;  // top row, right column
+  std::vector<std::vector<int>> groups = FreeEdgeQuads(free, grid.mesh);
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_EQ(groups[0].size(), 5u);  // faces 2, 5, 6, 7, 8
+
+  free[15] = false;  // the corner supported
+  groups = FreeEdgeQuads(free, grid.mesh);
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[0], (std::vector<int>{2, 5}));  // the right column
+  EXPECT_EQ(groups[1], (std::vector<int>{6, 7}));  // the top row
+}
+
+// A boundary triangle between two quads of a free edge does not break the stretch.
+TEST(EdgeBracing, ATriangleOnTheEdgeDoesNotEndTheStretch) {
+  ExtractedMesh grid = ShearedGrid();
+  ASSERT_EQ(CutQuads({7}, &grid), 1);  // the middle top quad becomes two triangles
+  std::vector<bool> free(16, false);
+  for (int i = 0; i <= 3; ++i) free[12 + i] = true;
+  const std::vector<std::vector<int>> groups = FreeEdgeQuads(free, grid.mesh);
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_EQ(groups[0].size(), 2u);
+  EXPECT_EQ(grid.stats.braced_quads, 1);
+  EXPECT_EQ(CutQuads({}, &grid), 0);
+  EXPECT_EQ(FacesWithSides(grid.mesh, 3), 2);
 }
 
 }  // namespace

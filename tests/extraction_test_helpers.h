@@ -1,5 +1,5 @@
-// Helpers shared by the extraction tests (quad_extraction_test, boundary_refinement_test):
-// flat test meshes, straight level lines, and the checks every extraction must pass.
+// Helpers shared by the extraction tests (quad_extraction_test, boundary_refinement_test,
+// edge_bracing*_test): flat test meshes, straight level lines, and the checks every extraction must pass.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -117,6 +117,27 @@ inline ExtractionMetricsAndMesh ExtractValid(const SurfaceModel& s, const std::v
   ExpectOriginsReproducePositions(s, r.out);
   r.m = MeasureExtractedMesh(s, r.out, 30.0);
   return r;
+}
+
+// A 3 × 3 polygon grid of parallelograms in z = 0 (vertex (i, j) at (i + shear·j, j), row by
+// row, the top row y = 3; face 3j + i), boundary flags set on the outer ring: the free-edge
+// bracing tests' mesh.
+inline ExtractedMesh QuadGrid3(double shear) {
+  ExtractedMesh out;
+  std::vector<VertexHandle> v;
+  for (int j = 0; j <= 3; ++j)
+    for (int i = 0; i <= 3; ++i) {
+      v.push_back(out.mesh.add_vertex(ToOpenMesh(Eigen::Vector3d(i + shear * j, j, 0.0))));
+      QuadMeshVertex origin;
+      origin.on_boundary = i == 0 || j == 0 || i == 3 || j == 3;
+      out.origin.push_back(origin);
+    }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const int k = 4 * j + i;
+      out.mesh.add_face(std::vector<VertexHandle>{v[k], v[k + 1], v[k + 5], v[k + 4]});
+    }
+  return out;
 }
 
 }  // namespace extraction_test
