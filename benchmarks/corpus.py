@@ -44,7 +44,7 @@ TARGETS = [
     ("planarity_max", "planarize: δ max", lambda v, h: v <= 1e-3, "≤ 1e-3"),
     ("closeness_h", "planarize: closeness max / h", lambda v, h: v <= 0.02, "≤ 0.02 h"),
 ]
-INFO = ["faces", "panels", "compliance_ratio", "levelset_s", "extract_s", "planarize_s", "stiffen_s", "total_s"]
+INFO = ["faces", "panels", "compliance_ratio", "braced_quads", "bracing_ratio", "levelset_s", "extract_s", "planarize_s", "stiffen_s", "total_s"]
 
 
 def measure(report):
@@ -66,6 +66,8 @@ def measure(report):
         "faces": s["surface"]["n_faces"],
         "panels": ex["n_faces"],
         "compliance_ratio": s.get("stiffen", {}).get("compliance_ratio"),
+        "braced_quads": s.get("stiffen", {}).get("bracing", {}).get("braced_quads"),
+        "bracing_ratio": s.get("stiffen", {}).get("bracing", {}).get("compliance_ratio"),
         "levelset_s": lv["seconds"], "extract_s": ex["seconds"], "planarize_s": pl["seconds"],
         "stiffen_s": s.get("stiffen", {}).get("seconds"),
         "total_s": report["run"]["total_seconds"],
@@ -146,7 +148,9 @@ def write_markdown(rows, path, sets):
              f"`bash benchmarks/corpus.sh{''.join(' --set ' + s for s in sets)}` on {time.strftime('%Y-%m-%d')}, "
              f"pqlayout {pqlayout.version()}. A target missed is **bold**. Columns:", ""]
     lines += [f"- `{name}`: {what}, target {text}" for name, what, _, text in TARGETS]
-    lines += ["- then: reference triangles, panels, stiffen's compliance ratio, seconds of level sets, "
+    lines += ["- then: reference triangles, panels, stiffen's compliance ratio (of the shell it stiffened), the quads "
+              "on free edges cut into triangles and the compliance after stiffen with them over without "
+              "(extract.brace_free_edges = paying), seconds of level sets, "
               "extraction, planarisation, stiffen and the whole run", ""]
     header = ["roof", "source"] + [t[0] for t in TARGETS] + INFO
     lines += ["| " + " | ".join(header) + " |", "|" + "---|" * 2 + "---:|" * (len(header) - 2)]

@@ -5,6 +5,7 @@
 #include <glog/logging.h>
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "report/figures.h"
@@ -105,8 +106,11 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   PQ_RETURN_IF_ERROR(WriteOffsetFigure(*state->surface, mesh, report.normal_offset, options.tolerance,
                                        "Normal offset of the stiffened shell from the planarised one",
                                        out->Path("figures/offset.svg")));
-  return WriteShell3dFigure(*state->surface, mesh, target, "The stiffened grid shell, seen from the south-west",
-                            out->Path("figures/shell_3d.svg"));
+  std::string title = "The stiffened grid shell, seen from the south-west";
+  if (bracing.value("braced_quads", 0) > 0)  // short enough for the figure's width
+    title = "The stiffened shell from the south-west; " + std::to_string(bracing["braced_quads"].get<int>()) +
+            " free-edge quads braced";
+  return WriteShell3dFigure(*state->surface, mesh, target, title, out->Path("figures/shell_3d.svg"));
 }
 
 }  // namespace pqlayout
