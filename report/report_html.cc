@@ -218,6 +218,16 @@ std::string Row(const std::string& key, const std::string& value) {
   return "<tr><td>" + Escape(key) + "</td><td>" + Escape(value) + "</td></tr>\n";
 }
 
+
+// "; N quads on free edges braced by stiffen ..." when stiffen cut some (the grid shell row
+// counts the extracted mesh, before them), else "".
+std::string BracingNote(const nlohmann::json& report) {
+  const nlohmann::json& braced = At(report, {"stages", "stiffen", "bracing", "braced_quads"});
+  if (!braced.is_number_integer() || braced.get<int>() <= 0) return "";
+  return "; " + std::to_string(braced.get<int>()) +
+         " quads on free edges then braced by stiffen, two triangles each (extract.brace_free_edges)";
+}
+
 std::string Summary(const nlohmann::json& report) {
   const auto& config = At(report, {"config"});
   const auto& stages = At(report, {"stages"});
@@ -240,7 +250,7 @@ std::string Summary(const nlohmann::json& report) {
     s += Row("grid shell", Metric(report, "extract", "n_faces") + " faces (" +
                                Metric(report, "extract", "quad_fraction") + " quads), " +
                                Metric(report, "extract", "n_vertices") + " nodes, " +
-                               Metric(report, "extract", "n_edges") + " members");
+                               Metric(report, "extract", "n_edges") + " members" + BracingNote(report));
   s += Row("pqlayout", Format(At(report, {"pqlayout", "version"})) + " (git " +
                            Format(At(report, {"pqlayout", "git_revision"})) + ")");
   s += Row("run", Format(At(report, {"run", "started_at"})) + ", " + Format(At(report, {"run", "total_seconds"})) +
