@@ -1,6 +1,9 @@
 #include "problems/edge_bracing_choice.h"
 
 #include <algorithm>
+#include <string>
+
+#include <glog/logging.h>
 
 #include "geometry/edge_bracing.h"
 
@@ -30,7 +33,10 @@ Status BraceWherePays(const std::vector<bool>& free, const BracingEvaluator& eva
   choice->trials = 1;
   std::vector<int> kept;  // faces of the unbraced mesh cut so far
   int kept_quads = 0;
-  for (const std::vector<int>& stretch : stretches) {
+  for (size_t i = 0; i < stretches.size(); ++i) {
+    const std::vector<int>& stretch = stretches[i];
+    LOG(INFO) << "bracing: trying free stretch " << i + 1 << " of " << stretches.size()
+              << (at_once ? " (all of them at once)" : "") << ", " << stretch.size() << " quads cut into triangles ...";
     std::vector<int> faces = kept;
     faces.insert(faces.end(), stretch.begin(), stretch.end());
     ExtractedMesh trial = unbraced;
@@ -39,7 +45,11 @@ Status BraceWherePays(const std::vector<bool>& free, const BracingEvaluator& eva
     const bool ok = evaluate(&trial, &c).ok();
     ++choice->trials;
     choice->ratio.push_back(ok ? c / choice->compliance : 0.0);
-    if (ok && c <= (1.0 - kBracingGain) * choice->compliance) {
+    const bool pays = ok && c <= (1.0 - kBracingGain) * choice->compliance;
+    LOG(INFO) << "bracing: free stretch " << i + 1 << ": "
+              << (ok ? "compliance × " + std::to_string(c / choice->compliance) : std::string("the evaluation failed"))
+              << (pays ? ", kept" : ", refused");
+    if (pays) {
       kept = faces;
       kept_quads = cut;
       *mesh = std::move(trial);
