@@ -5,6 +5,7 @@
 
 #include <glog/logging.h>
 
+#include "base/interrupt.h"
 #include "geometry/edge_bracing.h"
 
 namespace pqlayout {
@@ -43,6 +44,7 @@ Status BraceWherePays(const std::vector<bool>& free, const BracingEvaluator& eva
     const int cut = CutQuads(faces, &trial);
     double c = 0.0;
     const bool ok = evaluate(&trial, &c).ok();
+    if (!ok) PQ_RETURN_IF_ERROR(CheckInterrupt());  // a stop request is not "does not pay"
     ++choice->trials;
     choice->ratio.push_back(ok ? c / choice->compliance : 0.0);
     const bool pays = ok && c <= (1.0 - kBracingGain) * choice->compliance;

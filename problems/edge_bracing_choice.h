@@ -42,7 +42,8 @@ struct BracingChoice {
 };
 
 // mesh: the unbraced candidate; on return the kept trial as the evaluator left it. The
-// unbraced evaluation's error is returned; a trial's error counts as "does not pay".
+// unbraced evaluation's error is returned; a trial's error counts as "does not pay", unless
+// the run was interrupted (CheckInterrupt), which is returned.
 Status BraceWherePays(const std::vector<bool>& free, const BracingEvaluator& evaluate, ExtractedMesh* mesh,
                       BracingChoice* choice);
 

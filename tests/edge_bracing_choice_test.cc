@@ -3,8 +3,10 @@
 // a failing trial refused, the kept trial handed on as the evaluator left it.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <vector>
 
+#include "base/interrupt.h"
 #include "problems/edge_bracing_choice.h"
 #include "tests/extraction_test_helpers.h"
 
@@ -90,6 +92,28 @@ TEST(BracingChoice, NoFreeEdgeMeansOneEvaluation) {
   EXPECT_EQ(calls, 1);
   EXPECT_EQ(choice.stretches, 0);
   EXPECT_EQ(mesh.mesh.n_faces(), 9u);
+}
+
+// A trial that fails because the run was interrupted stops the choice with the interrupt.
+TEST(BracingChoice, AnInterruptedTrialStopsTheChoice) {
+  std::vector<bool> free;
+  ExtractedMesh mesh = Grid(&free);
+  int calls = 0;
+  const BracingEvaluator base = Evaluator(20.0, 20.0, false, &calls);
+  const BracingEvaluator interrupted = [&](ExtractedMesh* m, double* c) {
+    if (calls == 1) {  // the first trial after the unbraced evaluation
+      SetInterruptForTesting(SIGINT);
+      ++calls;
+      return Status::Internal("interrupted");
+    }
+    return base(m, c);
+  };
+  BracingChoice choice;
+  const Status status = BraceWherePays(free, interrupted, &mesh, &choice);
+  SetInterruptForTesting(0);
+  ClearInterrupt();
+  EXPECT_FALSE(status.ok());
+  EXPECT_EQ(calls, 2);  // the second stretch was not tried
 }
 
 }  // namespace
