@@ -1,8 +1,9 @@
-// Bracing of free edges (stage `extract`, `extract.brace_free_edges`): a quad with an edge on
-// a free (unsupported) stretch of the boundary is cut into two triangles by the diagonal that
-// gives the better-shaped pair. An unbraced quad row along a free edge is a mechanism-like
-// strip in the frame (its members bend); the diagonal makes it a truss. Which stretches are
-// worth it is the frame's question (problems/edge_bracing_choice.h); here only the topology.
+// Bracing of free edges (`extract.brace_free_edges`: `all` in stage extract, `paying` in
+// stage stiffen): a quad with an edge on a free (unsupported) stretch of the boundary is cut
+// into two triangles by the diagonal that gives the better-shaped pair. An unbraced quad row
+// along a free edge is a mechanism-like strip in the frame (its members bend); the diagonal
+// makes it a truss. Which stretches are worth it is the frame's question
+// (problems/edge_bracing_choice.h); here only the topology.
 #pragma once
 
 #include <vector>

@@ -1,7 +1,9 @@
 // Stage `stiffen`: the planarised grid shell reshaped within stiffen.tolerance so that the
-// frame's compliance drops (the optimiser: problems/stiffen.h). Writes the final mesh as
-// quads.obj / quads.ply (what `analyze` analyses), figures/offset.svg (normal offset from
-// the planarised mesh) and the 3D view of the final shell.
+// frame's compliance drops (the optimiser: problems/stiffen.h); with extract.brace_free_edges
+// = paying, each free edge stretch is also braced and the shell stiffened again, kept where
+// that pays (problems/edge_bracing_choice.h). Writes the final mesh as quads.obj / quads.ply
+// (what `analyze` analyses), figures/offset.svg (normal offset from the planarised mesh) and
+// the 3D view of the final shell.
 #include <glog/logging.h>
 
 #include <functional>
