@@ -11,11 +11,6 @@
 
 namespace pqlayout {
 
-struct CapHole {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  double radius = 0.0;
-};
-
 // Every boundary loop of `out` whose vertices all lie within radius + reach of a cap's centre
 // becomes one face (oriented like its neighbours); its vertices are then interior (origin
 // on_boundary false, cap true). A loop vertex that only the cap and one other face use (a

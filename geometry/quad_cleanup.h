@@ -1,4 +1,5 @@
-// The clean-up of an extracted polygon mesh (quad_extraction.h): short edges collapsed, idle
+// The clean-up of an extracted polygon mesh (quad_extraction.h): short edges collapsed, interior
+// kinks and idle
 // boundary vertices dropped, boundary triangle/pentagon pairs re-split into quads, boundary
 // corner triangles moved onto the boundary, interior 6/8-gons cut into quads. Internal to
 // the extraction (quad_extraction.cc); the counts it returns are ExtractionStats.
@@ -40,6 +41,13 @@ int DropFloatingParts(Polygons* m);
 // lie on a straight piece of the boundary (a curve that touched the boundary and left it
 // again, or the end of a merged sliver) carry nothing: removed from their face.
 int DropIdleBoundaryVertices(Polygons* m);
+
+// A vertex off the boundary with two neighbours (a crossing left with only two of its four
+// segments by the short-edge collapses, or where two curves touch without crossing) is a kink
+// in one frame member and nothing else: it is removed from its two faces, which then share the
+// chord between its neighbours (a triangle there disappears: with a pentagon it leaves a
+// quad). Two triangles on such a vertex are left alone. Returns the number dropped.
+int DropInteriorValence2Vertices(Polygons* m);
 
 // Along a boundary crossed obliquely by both families the boundary cells alternate between
 // triangles and pentagons. A triangle and a pentagon sharing a curve segment that ends on the

@@ -181,6 +181,7 @@ void CleanUpAndBuild(double min_edge_length, bool pair_boundary_triangles, Polyg
     while (const int collapsed = CollapseRound(min_edge_length, &polygons)) out->stats.collapsed_edges += collapsed;
   }
   out->stats.dropped_boundary_vertices = DropIdleBoundaryVertices(&polygons);
+  out->stats.dropped_interior_vertices = DropInteriorValence2Vertices(&polygons);
   if (pair_boundary_triangles) {
     out->stats.resplit_boundary_pairs = ResplitBoundaryTrianglePentagonPairs(&polygons);
     out->stats.collapsed_boundary_triangles = CollapseBoundaryTriangles(kMinResplitAngle, &polygons);
@@ -273,6 +274,23 @@ Status Extract(const SurfaceModel& surface, const SurfaceInfo& info, const std::
   return Status::Ok();
 }
 
+// The boundary corners of `surface` (turning by more than corner_angle_deg) off the caps'
+// rims (ExtractQuadMesh).
+std::vector<int> CornersOffCapRims(const SurfaceModel& surface, double corner_angle_deg,
+                                   const std::vector<CapHole>& caps, double cap_reach) {
+  std::vector<char> on_rim(surface.num_vertices(), 0);
+  for (const BoundaryLoop& loop : surface.boundary_loops())
+    for (const CapHole& cap : caps)
+      if (std::all_of(loop.vertices.begin(), loop.vertices.end(), [&](VertexHandle v) {
+            return (surface.position(v.idx()) - cap.centre).norm() < cap.radius + cap_reach;
+          }))
+        for (const VertexHandle v : loop.vertices) on_rim[v.idx()] = 1;
+  std::vector<int> corners;
+  for (const int v : surface.BoundaryCorners(corner_angle_deg * M_PI / 180.0))
+    if (!on_rim[v]) corners.push_back(v);
+  return corners;
+}
+
 Status CheckFinite(const std::vector<double>& phi, const std::vector<double>& psi) {
   for (size_t v = 0; v < phi.size(); ++v)
     if (!std::isfinite(phi[v]) || !std::isfinite(psi[v]) || std::abs(phi[v]) > 1e6 || std::abs(psi[v]) > 1e6)
@@ -284,13 +302,13 @@ Status CheckFinite(const std::vector<double>& phi, const std::vector<double>& ps
 
 Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
                        double corner_angle_deg, double min_edge_length, ExtractedMesh* out,
-                       bool pair_boundary_triangles) {
+                       bool pair_boundary_triangles, const std::vector<CapHole>& caps, double cap_reach) {
   const int nv = surface.num_vertices();
   if (static_cast<int>(phi.size()) != nv || static_cast<int>(psi.size()) != nv)
     return Status::InvalidInput("extract: φ and ψ need one value per reference vertex (" + std::to_string(nv) + ")");
   PQ_RETURN_IF_ERROR(CheckFinite(phi, psi));
   SurfaceInfo info;
-  info.corners = surface.BoundaryCorners(corner_angle_deg * M_PI / 180.0);
+  info.corners = CornersOffCapRims(surface, corner_angle_deg, caps, cap_reach);
   info.vertex_on_boundary.resize(nv);
   for (int v = 0; v < nv; ++v) info.vertex_on_boundary[v] = surface.is_boundary(v);
   info.edge_on_boundary.resize(surface.mesh().n_edges());
@@ -300,7 +318,8 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& p
 
 Status ExtractQuadMesh(const SurfaceModel& surface, const SeamTransitions& seams, const std::vector<double>& phi_cut,
                        const std::vector<double>& psi_cut, double corner_angle_deg, double min_edge_length,
-                       ExtractedMesh* out, bool pair_boundary_triangles) {
+                       ExtractedMesh* out, bool pair_boundary_triangles, const std::vector<CapHole>& caps,
+                       double cap_reach) {
   if (seams.cut == nullptr) return Status::InvalidInput("extract: seam transitions without a seam cut");
   const SeamCut& seam_cut = *seams.cut;
   const SurfaceModel& cut = seam_cut.cut();
@@ -360,7 +379,7 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const SeamTransitions& seams
   info.seams = &seam_cut;
   info.transitions = &seams;
   std::vector<char> is_corner(surface.num_vertices(), 0);
-  for (const int v : surface.BoundaryCorners(corner_angle_deg * M_PI / 180.0)) is_corner[v] = 1;
+  for (const int v : CornersOffCapRims(surface, corner_angle_deg, caps, cap_reach)) is_corner[v] = 1;
   info.vertex_on_boundary.resize(nv);
   for (int v = 0; v < nv; ++v) {
     const int original = seam_cut.original_vertex(v);

@@ -64,6 +64,7 @@ struct ExtractionStats {
   int collapsed_edges = 0;     // short edges merged
   int padded_faces = 0;        // loops with fewer than 3 output vertices, given extra points
   int dropped_boundary_vertices = 0;  // idle straight-boundary vertices removed (valence 2, no corner)
+  int dropped_interior_vertices = 0;  // interior valence-2 vertices removed (DropInteriorValence2Vertices)
   int resplit_boundary_pairs = 0;  // boundary triangle + pentagon pairs re-split into two quads
   int collapsed_boundary_triangles = 0;  // crossings just inside the boundary moved onto it
   int split_interior_polygons = 0;       // interior 6- and 8-gons cut into quads
@@ -86,17 +87,29 @@ struct ExtractedMesh {
   ExtractionStats stats;
 };
 
+// A hole the level-set stage cut round a pole (problems/levelset.h, LevelSetCap), closed
+// after extraction by one cap face (geometry/cap_fill.h).
+struct CapHole {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
 // surface: the reference triangles; phi, psi: one value per vertex (#V), their integer
 // levels are the curves; corner_angle_deg: boundary turning angle above which a reference
 // boundary vertex is a corner (kept as a mesh vertex); min_edge_length (metres, the stage
 // passes extract.min_edge × h): shorter edges are collapsed, 0 keeps all;
 // pair_boundary_triangles: where a boundary triangle and a boundary pentagon share the last
 // segment of a curve, re-split the hexagon they form into two quads (the curve then ends at
-// the neighbouring boundary point).
+// the neighbouring boundary point); caps: the holes round poles — a boundary loop of
+// `surface` whose vertices all lie within radius + cap_reach of a cap's centre is a cap's rim,
+// a jagged loop of working-mesh edges that a cap face will close: its kinks are no corners (as
+// corners they stay mesh vertices, and a level line ending next to one leaves a short rim
+// edge whose collapse turns a rim quad into a triangle, interior once the cap is closed).
 // InvalidInput on size mismatch or non-finite values.
 Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
                        double corner_angle_deg, double min_edge_length, ExtractedMesh* out,
-                       bool pair_boundary_triangles = true);
+                       bool pair_boundary_triangles = true, const std::vector<CapHole>& caps = {},
+                       double cap_reach = 0.0);
 
 // Transitions across the seams of `cut`, per path p: u₊ = sign[p]·u₋ + offset[p] with u = φ
 // (phi_offset) or ψ (psi_offset), "minus" the side of SeamEdge::minus_face. sign ±1 (shared
@@ -117,7 +130,8 @@ struct SeamTransitions {
 // transition or values that violate one.
 Status ExtractQuadMesh(const SurfaceModel& surface, const SeamTransitions& seams, const std::vector<double>& phi_cut,
                        const std::vector<double>& psi_cut, double corner_angle_deg, double min_edge_length,
-                       ExtractedMesh* out, bool pair_boundary_triangles = true);
+                       ExtractedMesh* out, bool pair_boundary_triangles = true, const std::vector<CapHole>& caps = {},
+                       double cap_reach = 0.0);
 constexpr double kSeamTransitionTolerance = 1e-6;
 
 // What the stage reports about an extracted mesh (lengths in metres).

@@ -82,6 +82,7 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"refined_boundary_edges", stats.refined_boundary_edges},
           {"slid_boundary_vertices", stats.slid_boundary_vertices},
           {"dropped_boundary_vertices", stats.dropped_boundary_vertices},
+          {"dropped_interior_vertices", stats.dropped_interior_vertices},
           {"regions_with_holes", stats.regions_with_holes},
           {"floating_faces", stats.floating_faces},
           {"unmatched_seam_edges", stats.unmatched_seam_edges},
@@ -129,12 +130,12 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
     for (const double b : levelsets.seams.psi_offset) seams.psi_offset.push_back(static_cast<int>(std::lround(b)));
     const SurfaceModel& cut_surface = levelsets.seams.working ? *levelsets.seams.working : surface;
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(cut_surface, seams, levelsets.phi_cut, levelsets.psi_cut, options.corner_angle,
-                                       options.min_edge * h, &quads));
+                                       options.min_edge * h, &quads, true, Caps(levelsets), h));
     quads.stats.caps = FillCaps(Caps(levelsets), h, kCapRow * h, &quads);
     if (levelsets.seams.working) OnReference(surface, &quads);
   } else if (levelsets.working) {  // single-valued, solved on a remeshed (or holed) working mesh
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(*levelsets.working, levelsets.phi_working, levelsets.psi_working,
-                                       options.corner_angle, options.min_edge * h, &quads));
+                                       options.corner_angle, options.min_edge * h, &quads, true, Caps(levelsets), h));
     quads.stats.caps = FillCaps(Caps(levelsets), h, kCapRow * h, &quads);
     OnReference(surface, &quads);
   } else {

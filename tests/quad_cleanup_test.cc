@@ -33,6 +33,38 @@ TEST(QuadCleanup, DropsOnlyPartsThatTouchNoBoundary) {
   EXPECT_TRUE(m.faces.empty());
 }
 
+// Two rows of five unit quads (vertices 0‥17, row by row) with vertex 18 just above the
+// middle of edge (8, 9): the cell above is the pentagon (8, 18, 9, 15, 14) over the triangle
+// (8, 9, 18). Vertex 18 has two neighbours and the two faces only: it goes, the triangle with
+// it, and the pentagon is the quad (8, 9, 15, 14) again. On the reference boundary it stays.
+TEST(QuadCleanup, AnInteriorValence2VertexGoesWithItsTriangle) {
+  const auto notched = [](bool on_boundary) {
+    extraction_internal::Polygons m;
+    for (int row = 0; row < 3; ++row)
+      for (int i = 0; i < 6; ++i) {
+        m.position.emplace_back(i, row, 0.0);
+        m.origin.push_back(QuadMeshVertex());
+        m.origin.back().on_boundary = row != 1 || i == 0 || i == 5;
+      }
+    m.position.emplace_back(2.5, 1.3, 0.0);
+    m.origin.push_back(QuadMeshVertex());
+    m.origin.back().on_boundary = on_boundary;
+    for (int row = 0; row < 2; ++row)
+      for (int i = 0; i < 5; ++i) m.faces.push_back({6 * row + i, 6 * row + i + 1, 6 * row + i + 7, 6 * row + i + 6});
+    m.faces[7] = {8, 18, 9, 15, 14};
+    m.faces.push_back({8, 9, 18});
+    return m;
+  };
+  extraction_internal::Polygons m = notched(false);
+  EXPECT_EQ(extraction_internal::DropInteriorValence2Vertices(&m), 1);
+  ASSERT_EQ(m.faces.size(), 10u);
+  EXPECT_EQ(m.faces[7], (std::vector<int>{8, 9, 15, 14}));
+  for (const auto& face : m.faces) EXPECT_EQ(face.size(), 4u);
+  extraction_internal::Polygons kept = notched(true);
+  EXPECT_EQ(extraction_internal::DropInteriorValence2Vertices(&kept), 0);
+  EXPECT_EQ(kept.faces.size(), 11u);
+}
+
 // The collapse's refusals, named: on a 3 × 3 grid of quads the interior edge (5, 6) may
 // collapse; as a chord between two reference-boundary points, or between two corners, not.
 TEST(QuadCleanup, CollapseBlockerNamesWhyAnEdgeStays) {
