@@ -1,7 +1,6 @@
 // The clean-up of an extracted polygon mesh (quad_extraction.h): short edges collapsed, interior
-// kinks and idle
-// boundary vertices dropped, boundary triangle/pentagon pairs re-split into quads, boundary
-// corner triangles moved onto the boundary, interior 6/8-gons cut into quads. Internal to
+// kinks and idle boundary vertices dropped, boundary triangle/pentagon pairs re-split into
+// quads, boundary corner triangles moved onto the boundary, interior 6/8-gons cut into quads. Internal to
 // the extraction (quad_extraction.cc); the counts it returns are ExtractionStats.
 #pragma once
 
