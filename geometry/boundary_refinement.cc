@@ -334,6 +334,60 @@ struct Polygons {
       queue->push_back(halfedge);
     }
   }
+  // The vertex of face f off the boundary (v_j of [b, v1, ..., vr, a]) closest to p, if closer
+  // than min_edge, moved onto p: the face is cut there into [b, v1, ..., v_j] and [v_j, ...,
+  // vr, a] (a side with fewer than three vertices goes: its edge is then a boundary edge of
+  // the neighbour), instead of a new vertex at p joined to v_j by an edge shorter than
+  // min_edge. Not if a face at v_j would get an angle below min(kGoodAngle, what it had) or an
+  // edge at v_j would be shorter than |p − v_j|. Returns v_j, or −1 (nothing changed).
+  int MoveOntoBoundary(int f, int a, int b, const Eigen::Vector3d& p, const std::vector<QuadMeshVertex>& origin,
+                       double min_edge) {
+    std::vector<int> loop = faces[f];
+    std::rotate(loop.begin(), std::find(loop.begin(), loop.end(), b), loop.end());
+    int j = -1;
+    for (int i = 1; i + 1 < static_cast<int>(loop.size()); ++i)
+      if (!origin[loop[i]].on_boundary && (position[loop[i]] - p).norm() < min_edge &&
+          (j < 0 || (position[loop[i]] - p).norm() < (position[loop[j]] - p).norm()))
+        j = i;
+    if (j < 0) return -1;
+    const int v = loop[j];
+    const double moved = (position[v] - p).norm();
+    std::vector<int> at_v;  // the other faces at v
+    for (size_t g = 0; g < faces.size(); ++g)
+      if (int(g) != f && std::find(faces[g].begin(), faces[g].end(), v) != faces[g].end()) at_v.push_back(int(g));
+    const std::vector<int> q1(loop.begin(), loop.begin() + j + 1), q2(loop.begin() + j, loop.end());
+    const auto shape = [&](const std::vector<Eigen::Vector3d>& where) {
+      double angle = INFINITY, edge = INFINITY;
+      for (const int g : at_v) {
+        const auto& face = faces[g];
+        if (face.size() <= 4) angle = std::min(angle, ShapeAngle(where, face));
+        const size_t k = std::find(face.begin(), face.end(), v) - face.begin(), n = face.size();
+        edge = std::min({edge, (where[face[(k + 1) % n]] - where[v]).norm(), (where[face[(k + n - 1) % n]] - where[v]).norm()});
+      }
+      for (const auto* q : {&q1, &q2})
+        if (q->size() >= 3) angle = std::min(angle, ShapeAngle(where, *q));
+      return std::make_pair(angle, edge);
+    };
+    const double angle_before = shape(position).first;
+    std::vector<Eigen::Vector3d> after = position;
+    after[v] = p;
+    const auto [angle_after, edge_after] = shape(after);
+    if (angle_after < std::min(angle_before, kGoodAngle) || edge_after < moved) return -1;
+    position[v] = p;
+    for (size_t k = 0; k < faces[f].size(); ++k) face_of.erase({faces[f][k], faces[f][(k + 1) % faces[f].size()]});
+    faces[f].clear();
+    for (const auto* q : {&q1, &q2}) {
+      if (q->size() < 3) continue;
+      if (faces[f].empty()) {
+        faces[f] = *q;
+        Register(f);
+      } else {
+        faces.push_back(*q);
+        Register(static_cast<int>(faces.size()) - 1);
+      }
+    }
+    return v;
+  }
   // Adds vertex m (at p) on the boundary edge a → b of face f and cuts the face there
   // (BestSplit): the face as [b, v1, ..., vr, a], then [m, b, v1, ..., vj] and [vj, ..., vr, a, m].
   void SplitAt(int f, int a, int b, const Eigen::Vector3d& p, const std::vector<QuadMeshVertex>& origin,
@@ -379,7 +433,7 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
   // Sharp kinks: those that turn by more than min_turn (SnapToSharpKinks).
   const double min_turn = SharpKinkTurn(tolerance, min_edge);
   int slid_to_kinks = SnapToSharpKinks(boundary, min_turn, min_edge, m.faces, m.face_of, &position, &origin, &pinned);
-  int inserted = 0;
+  int inserted = 0, moved_onto_boundary = 0;
   const int max_insertions = 4 * static_cast<int>(position.size()) + 16;  // a guard, never reached in practice
   while (!queue.empty() && inserted < max_insertions) {
     const auto [a, b] = queue.front();
@@ -416,7 +470,17 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     // one vertex (and one triangle) more and edges below min_edge where thirds would do.
     const double at = kink >= 0.0 ? kink : span.span / PiecesNeeded(boundary, la.loop, from, span.span, tolerance);
     Eigen::Vector3d p;
-    origin.push_back(boundary.PointAt(la.loop, from + at, &p));
+    const QuadMeshVertex on_boundary = boundary.PointAt(la.loop, from + at, &p);
+    if (const int v = m.MoveOntoBoundary(f, a, b, p, origin, min_edge); v >= 0) {
+      origin[v] = on_boundary;
+      pinned[v] = true;
+      if (v < int(located.size())) located[v].reset();  // located again where it now is
+      queue.push_back({a, v});
+      queue.push_back({v, b});
+      ++moved_onto_boundary;
+      continue;
+    }
+    origin.push_back(on_boundary);
     pinned.push_back(true);
     const int added = static_cast<int>(position.size());
     m.SplitAt(f, a, b, p, origin, min_edge);
@@ -425,8 +489,11 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     ++inserted;
   }
   out->stats.slid_boundary_vertices += slid + slid_to_kinks;
-  if (inserted == 0 && slid + slid_to_kinks == 0) return 0;
+  out->stats.moved_onto_boundary += moved_onto_boundary;
+  if (inserted == 0 && slid + slid_to_kinks + moved_onto_boundary == 0) return 0;
 
+  m.faces.erase(std::remove_if(m.faces.begin(), m.faces.end(), [](const auto& face) { return face.size() < 3; }),
+                m.faces.end());  // a triangle a vertex moved onto the boundary flattened (MoveOntoBoundary)
   out->mesh = BuildPolyMesh(position, m.faces, &out->stats.rejected_faces);
   out->stats.refined_boundary_edges += inserted;
   return inserted;

@@ -65,6 +65,7 @@ struct ExtractionStats {
   int padded_faces = 0;        // loops with fewer than 3 output vertices, given extra points
   int dropped_boundary_vertices = 0;  // idle straight-boundary vertices removed (valence 2, no corner)
   int dropped_interior_vertices = 0;  // interior valence-2 vertices removed (DropInteriorValence2Vertices)
+  int moved_onto_boundary = 0;  // interior vertices moved onto a chord's new point (RefineBoundaryChords)
   int resplit_boundary_pairs = 0;  // boundary triangle + pentagon pairs re-split into two quads
   int collapsed_boundary_triangles = 0;  // crossings just inside the boundary moved onto it
   int split_interior_polygons = 0;       // interior 6- and 8-gons cut into quads

@@ -83,6 +83,7 @@ nlohmann::json ToJson(const ExtractedMeshMetrics& m, const ExtractionStats& stat
           {"slid_boundary_vertices", stats.slid_boundary_vertices},
           {"dropped_boundary_vertices", stats.dropped_boundary_vertices},
           {"dropped_interior_vertices", stats.dropped_interior_vertices},
+          {"moved_onto_boundary", stats.moved_onto_boundary},
           {"regions_with_holes", stats.regions_with_holes},
           {"floating_faces", stats.floating_faces},
           {"unmatched_seam_edges", stats.unmatched_seam_edges},

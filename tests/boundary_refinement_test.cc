@@ -207,5 +207,53 @@ TEST(BoundaryRefinement, ChordsCutIntoTheFewestEqualPieces) {
   EXPECT_GT(three_or_more, 0);  // the case halving got wrong is there
 }
 
+// A crossing X just inside the boundary, next to where the chord A → B is cut (the two
+// openings × curvature roof: a diagonal 0.09 h long from the new boundary point to such a
+// crossing): X moves onto that point instead (MoveOntoBoundary). Flat disk of radius 10, A and
+// B its boundary vertices nearest ±8° (the chord stands ~0.1 m off, > 0.04; halves are within),
+// X at radius 9.5 on the bisector, 0.5 from the cut point, min_edge 0.8; four faces round X.
+// With X at radius 9 (1 m from the point) a vertex is inserted as before.
+TEST(BoundaryRefinement, ACrossingNextToANewBoundaryPointMovesOntoIt) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  const double tolerance = 0.04, min_edge = 0.8;
+  const auto nearest = [&](double degrees) {
+    int best = -1;
+    for (int v = 0; v < s.num_vertices(); ++v) {
+      if (!s.is_boundary(v)) continue;
+      const Eigen::Vector3d p = s.position(v);
+      const double off = std::abs(std::atan2(p.y(), p.x()) - degrees * M_PI / 180.0);
+      if (best < 0 || off < std::abs(std::atan2(s.position(best).y(), s.position(best).x()) - degrees * M_PI / 180.0))
+        best = v;
+    }
+    return s.position(best);
+  };
+  for (const double x_radius : {9.5, 9.0}) {
+    // A, B, X, D, C: faces [A, B, X], [B, D, X], [X, D, C], [A, X, C].
+    const std::vector<Eigen::Vector3d> position = {nearest(-8.0), nearest(8.0), Eigen::Vector3d(x_radius, 0.0, 0.0),
+                                                   Eigen::Vector3d(8.0, 1.5, 0.0), Eigen::Vector3d(8.0, -1.5, 0.0)};
+    ExtractedMesh out;
+    out.mesh = BuildPolyMesh(position, {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}, {0, 2, 4}}, &out.stats.rejected_faces);
+    out.origin.resize(5);
+    out.origin[0].on_boundary = out.origin[1].on_boundary = true;
+    const int inserted = RefineBoundaryChords(s, tolerance, 0.0, min_edge, &out);
+    const ExtractedMeshMetrics after = MeasureExtractedMesh(s, out, 30.0);
+    EXPECT_EQ(out.stats.rejected_faces, 0);
+    ExpectSimpleCounterClockwiseManifold(out.mesh);
+    if (x_radius == 9.5) {
+      EXPECT_EQ(inserted, 0);
+      EXPECT_EQ(out.stats.moved_onto_boundary, 1);
+      EXPECT_EQ(out.mesh.n_vertices(), 5u);
+      EXPECT_EQ(out.mesh.n_faces(), 3u);  // [A, B, X] flattened and gone
+      EXPECT_TRUE(out.origin[2].on_boundary);
+      EXPECT_NEAR(ToEigen(out.mesh.point(VertexHandle(2))).norm(), 10.0, 0.01);
+      EXPECT_GE(after.edge_min, 1.0);
+    } else {
+      EXPECT_EQ(inserted, 1);
+      EXPECT_EQ(out.stats.moved_onto_boundary, 0);
+      EXPECT_EQ(out.mesh.n_faces(), 5u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace pqlayout
