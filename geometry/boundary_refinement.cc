@@ -8,196 +8,14 @@
 #include <optional>
 #include <tuple>
 
+#include "geometry/boundary_slides.h"
 #include "geometry/polygon_shape.h"
 
 namespace pqlayout {
 namespace {
 
-constexpr double kGoodAngle = 20.0 * M_PI / 180.0;  // pieces with every angle in [20°, 160°] first
-constexpr int kMaxPieces = 8;  // a chord is never cut into more pieces than this while sliding
-constexpr double kSlideMargin = 0.1;  // a slid vertex keeps this fraction of the span from either neighbour
-// A vertex moved onto a kink may make the faces at it up to this much worse than
-// min(20°, what they had): a hole's boundary makes reflex corners that a few degrees change.
-constexpr double kKinkAngleSlack = 3.0 * M_PI / 180.0;
+using namespace boundary_internal;
 
-// The boundary between two points of one loop, the shorter way round: the walk starts at arc
-// `from` and goes forward by `span`; a_first says whether it starts at a (else at b).
-struct Span {
-  bool ok = false;
-  bool a_first = true;
-  double from = 0.0, span = 0.0;
-};
-
-Span Between(const ReferenceBoundary& boundary, const ReferenceBoundary::Location& a,
-             const ReferenceBoundary::Location& b) {
-  Span s;
-  if (a.loop < 0 || a.loop != b.loop) return s;
-  const double length = boundary.length(a.loop);
-  double forward = std::fmod(b.arc - a.arc, length);
-  if (forward < 0.0) forward += length;
-  s.a_first = forward <= length - forward;
-  s.from = s.a_first ? a.arc : b.arc;
-  s.span = s.a_first ? forward : length - forward;
-  s.ok = s.span > 0.0 && s.span <= 0.5 * length;
-  return s;
-}
-
-// The boundary loops of a mesh given as halfedge → face, each in the faces' orientation and
-// starting at a corner if it has one.
-std::vector<std::vector<int>> MeshBoundaryLoops(const std::map<std::pair<int, int>, int>& face_of,
-                                                const std::vector<QuadMeshVertex>& origin) {
-  std::map<int, int> next;  // along the mesh boundary, in the faces' orientation
-  for (const auto& [halfedge, f] : face_of)
-    if (!face_of.count({halfedge.second, halfedge.first})) next[halfedge.first] = halfedge.second;
-  std::set<int> visited;
-  std::vector<std::vector<int>> loops;
-  for (const auto& [first, unused] : next) {
-    if (visited.count(first)) continue;
-    // The loop through `first`, starting at a corner if there is one.
-    std::vector<int> loop;
-    for (int v = first; !visited.count(v) && next.count(v); v = next.at(v)) loop.push_back(v), visited.insert(v);
-    const auto corner = std::find_if(loop.begin(), loop.end(), [&](int v) { return origin[v].corner; });
-    if (corner != loop.end()) std::rotate(loop.begin(), corner, loop.end());
-    loops.push_back(std::move(loop));
-  }
-  return loops;
-}
-
-// What a slide must not spoil at a vertex: the smallest angle of the faces at it and its
-// shortest edge.
-class VertexShape {
- public:
-  VertexShape(const std::vector<std::vector<int>>& faces, const std::vector<Eigen::Vector3d>& position)
-      : faces_(faces), position_(position), faces_at_(position.size()) {
-    for (size_t f = 0; f < faces.size(); ++f)
-      for (const int v : faces[f]) faces_at_[v].push_back(int(f));
-  }
-  double SmallestAngle(int v) const {
-    double angle = M_PI;
-    for (const int f : faces_at_[v]) angle = std::min(angle, ShapeAngle(position_, faces_[f]));
-    return angle;
-  }
-  double ShortestEdge(int v) const {
-    double shortest = INFINITY;
-    for (const int f : faces_at_[v]) {
-      const auto& face = faces_[f];
-      const size_t k = std::find(face.begin(), face.end(), v) - face.begin(), m = face.size();
-      for (const int w : {face[(k + 1) % m], face[(k + m - 1) % m]})
-        shortest = std::min(shortest, (position_[w] - position_[v]).norm());
-    }
-    return shortest;
-  }
-
- private:
-  const std::vector<std::vector<int>>& faces_;
-  const std::vector<Eigen::Vector3d>& position_;  // read as it changes
-  std::vector<std::vector<int>> faces_at_;
-};
-
-// SlideBoundaryVertices on one mesh boundary loop (below). Returns the number of vertices moved.
-int SlideLoop(const ReferenceBoundary& boundary, const std::vector<int>& loop, double tolerance, double max_slide,
-              double min_edge, const VertexShape& shape, std::vector<Eigen::Vector3d>* position,
-              std::vector<QuadMeshVertex>* origin) {
-  const size_t n = loop.size();
-  // Arc length along the walk from loop[0]; the walk must go one way round the reference loop.
-  const auto l0 = boundary.Locate((*position)[loop[0]]);
-  const Span first_step = Between(boundary, l0, boundary.Locate((*position)[loop[1]]));
-  if (!first_step.ok) return 0;
-  const bool forward = first_step.a_first;
-  std::vector<double> t(n + 1, 0.0);
-  bool consistent = true;
-  for (size_t i = 1; i <= n && consistent; ++i) {
-    const Span step = Between(boundary, boundary.Locate((*position)[loop[i - 1]]),
-                              boundary.Locate((*position)[loop[i % n]]));
-    consistent = step.ok && step.a_first == forward && boundary.Locate((*position)[loop[i % n]]).loop == l0.loop;
-    t[i] = t[i - 1] + step.span;
-  }
-  if (!consistent) return 0;
-  const auto arc = [&](double u) { return forward ? l0.arc + u : l0.arc - u; };
-  const auto point = [&](double u) {
-    Eigen::Vector3d p;
-    boundary.PointAt(l0.loop, arc(u), &p);
-    return p;
-  };
-  // Deviation of the chord u0 → u1 cut into k equal pieces.
-  const auto deviation = [&](double u0, double u1, int k) {
-    double d = 0.0;
-    const double piece = (u1 - u0) / k;
-    for (int j = 0; j < k; ++j) {
-      const double a = u0 + j * piece, b = a + piece;
-      d = std::max(d, boundary.ChordDeviation(point(a), point(b), l0.loop, forward ? arc(a) : arc(b), piece));
-    }
-    return d;
-  };
-  int moved = 0;
-  double previous = 0.0;
-  for (size_t i = 1; i < n; ++i) {
-    const int v = loop[i];
-    double place = t[i];
-    if (!(*origin)[v].corner) {
-      const double lo = std::max(t[i] - max_slide, previous + kSlideMargin * (t[i] - previous));
-      const double hi = std::min(t[i] + max_slide, t[i + 1] - kSlideMargin * (t[i + 1] - t[i]));
-      if (lo < hi) {
-        int k = 1;
-        while (k < kMaxPieces && deviation(previous, lo, k) > tolerance) ++k;
-        const bool keep = k == 1 && t[i] >= lo && t[i] <= hi && deviation(previous, t[i], 1) <= tolerance;
-        if (!keep) {
-          double a = lo, b = hi;  // farthest place in [lo, hi] where k pieces are within tolerance
-          if (deviation(previous, hi, k) <= tolerance) {
-            a = hi;
-          } else {
-            for (int it = 0; it < 40; ++it) {
-              const double mid = 0.5 * (a + b);
-              (deviation(previous, mid, k) <= tolerance ? a : b) = mid;
-            }
-          }
-          place = a;
-        }
-      }
-    }
-    if (place != t[i]) {
-      const double angle_before = shape.SmallestAngle(v), edge_before = shape.ShortestEdge(v);
-      const Eigen::Vector3d old_position = (*position)[v];
-      Eigen::Vector3d p;
-      const QuadMeshVertex slid = boundary.PointAt(l0.loop, arc(place), &p);
-      (*position)[v] = p;
-      if (shape.SmallestAngle(v) < std::min(angle_before, kGoodAngle) ||
-          shape.ShortestEdge(v) < std::min(edge_before, min_edge)) {
-        (*position)[v] = old_position;
-        place = t[i];
-      } else {
-        (*origin)[v] = slid;
-        ++moved;
-      }
-    }
-    previous = place;
-  }
-  return moved;
-}
-
-// Slides boundary vertices (not corners) along the boundary so that fewer chords need an
-// extra vertex. Greedy along each mesh boundary loop, starting at a corner if it has one:
-// a vertex keeps its place if its chord from the previous (already placed) vertex is within
-// tolerance there, else it moves back to the farthest place where it is; where the chord
-// needs extra vertices anyway, the vertex moves as far forward as those allow (slack for
-// the chords that follow). Every vertex stays within max_slide (arc length) of where the
-// level lines put it and keeps kSlideMargin of the span to its neighbours; a move that
-// would give a face at the vertex an angle below min(20°, what it had), or an edge at it
-// shorter than min(min_edge, what it had), is undone.
-// Returns the number of vertices moved.
-int SlideBoundaryVertices(const ReferenceBoundary& boundary, double tolerance, double max_slide, double min_edge,
-                          const std::vector<std::vector<int>>& faces,
-                          const std::map<std::pair<int, int>, int>& face_of, std::vector<Eigen::Vector3d>* position,
-                          std::vector<QuadMeshVertex>* origin) {
-  if (!(max_slide > 0.0)) return 0;
-  const VertexShape shape(faces, *position);
-  int moved = 0;
-  for (const auto& loop : MeshBoundaryLoops(face_of, *origin)) {
-    if (loop.size() < 3) continue;
-    moved += SlideLoop(boundary, loop, tolerance, max_slide, min_edge, shape, position, origin);
-  }
-  return moved;
-}
 
 // Cuts face [b, v1, ..., vr, a] (its edge a → b closes the loop) at the new vertex m by m – v_j
 // into [m, b, v1, ..., vj] and [vj, ..., vr, a, m], choosing j for: v_j not on the boundary,
@@ -219,70 +37,6 @@ void BestSplit(const std::vector<int>& loop, int m, const std::vector<Eigen::Vec
                                                         int(q1.size() == 4) + int(q2.size() == 4), angle};
     if (key > best_key) best_key = key, *best1 = q1, *best2 = q2;
   }
-}
-
-// Moves boundary vertex v by `move` (signed arc length) along reference loop `loop` from arc
-// `arc`, onto a kink, unless it is pinned or the move would give a face at it an angle more
-// than kKinkAngleSlack below min(20°, what it had) or an edge at it shorter than
-// min(min_edge, |move|, what it had): the alternative, a vertex inserted at the kink, would
-// make an edge |move| long. A moved vertex is pinned. Returns whether it moved.
-bool SlideToKink(const ReferenceBoundary& boundary, int loop, double arc, double move, int v, double min_edge,
-                 const std::vector<std::vector<int>>& faces, std::vector<Eigen::Vector3d>* position, std::vector<QuadMeshVertex>* origin,
-                 std::vector<bool>* pinned) {
-  if ((*pinned)[v]) return false;
-  std::vector<std::vector<int>> at_v;  // the faces at v (a linear scan: slides are few)
-  for (const auto& face : faces)
-    if (std::find(face.begin(), face.end(), v) != face.end()) at_v.push_back(face);
-  const VertexShape shape(at_v, *position);
-  const double angle_before = shape.SmallestAngle(v), edge_before = shape.ShortestEdge(v);
-  const Eigen::Vector3d old_position = (*position)[v];
-  Eigen::Vector3d p;
-  const QuadMeshVertex slid = boundary.PointAt(loop, arc + move, &p);
-  (*position)[v] = p;
-  if (shape.SmallestAngle(v) < std::min(angle_before, kGoodAngle) - kKinkAngleSlack ||
-      shape.ShortestEdge(v) < std::min({edge_before, min_edge, std::abs(move)})) {
-    (*position)[v] = old_position;
-    return false;
-  }
-  (*origin)[v] = slid;
-  (*pinned)[v] = true;
-  return true;
-}
-
-// A kink of the reference boundary that turns by θ with min_edge · sin(θ/2) > tolerance (5.7°
-// at the defaults) is followed within tolerance only by chords shorter than min_edge on one
-// side of it, unless a mesh vertex sits at it: the corpus's openings are polygons with 21°
-// kinks 0.2–0.4 h apart. Each boundary vertex (not a corner) within min_edge of such a kink
-// moves onto it, if the kink is less than halfway to either boundary neighbour and SlideToKink
-// accepts the shape. Returns the number of vertices moved.
-int SnapToSharpKinks(const ReferenceBoundary& boundary, double min_turn, double min_edge,
-                     const std::vector<std::vector<int>>& faces, const std::map<std::pair<int, int>, int>& face_of,
-                     std::vector<Eigen::Vector3d>* position, std::vector<QuadMeshVertex>* origin,
-                     std::vector<bool>* pinned) {
-  int moved = 0;
-  for (const auto& loop : MeshBoundaryLoops(face_of, *origin)) {
-    const size_t n = loop.size();
-    if (n < 3) continue;
-    for (size_t i = 0; i < n; ++i) {
-      const int v = loop[i];
-      if ((*pinned)[v]) continue;
-      const auto at = boundary.Locate((*position)[v]);
-      const double kink = boundary.NearestKink(at.loop, at.arc, min_edge, min_turn);
-      if (std::isnan(kink)) continue;
-      if (std::abs(kink) < 1e-9 * min_edge) {  // already there: stays
-        (*pinned)[v] = true;
-        continue;
-      }
-      bool room = true;
-      for (const int w : {loop[(i + 1) % n], loop[(i + n - 1) % n]}) {
-        const auto there = boundary.Locate((*position)[w]);
-        const double offset = std::remainder(there.arc - at.arc, boundary.length(at.loop));
-        if (there.loop != at.loop || (offset * kink > 0.0 && std::abs(kink) >= 0.5 * std::abs(offset))) room = false;
-      }
-      if (room && SlideToKink(boundary, at.loop, at.arc, kink, v, min_edge, faces, position, origin, pinned)) ++moved;
-    }
-  }
-  return moved;
 }
 
 // The fewest equal pieces (2 to kMaxPieces) into which the boundary from arc `from` forward by
@@ -468,7 +222,21 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     // (its first piece now, the rest when the remainder comes round the queue): halving
     // instead cut a span 0.7 h long on a small opening into 0.35 h, then 0.175 h pieces,
     // one vertex (and one triangle) more and edges below min_edge where thirds would do.
-    const double at = kink >= 0.0 ? kink : span.span / PiecesNeeded(boundary, la.loop, from, span.span, tolerance);
+    const int pieces = PiecesNeeded(boundary, la.loop, from, span.span, tolerance);
+    // Pieces shorter than min_edge on a cell with an even number of sides (a new vertex would
+    // leave it a triangle more; on an odd cell it makes two quads of a pentagon, worth the
+    // short edge): the chord is shortened instead.
+    if (kink < 0.0 && span.span / pieces < min_edge && m.faces[f].size() % 2 == 0) {
+      if (const int end = ShortenChord(boundary, la.loop, span, a, b, tolerance, max_slide, min_edge, m.faces,
+                                       &position, &origin, &pinned);
+          end >= 0) {
+        if (end < int(located.size())) located[end].reset();
+        m.BoundaryHalfedges(end, &origin, &queue);
+        ++slid_to_kinks;
+        continue;
+      }
+    }
+    const double at = kink >= 0.0 ? kink : span.span / pieces;
     Eigen::Vector3d p;
     const QuadMeshVertex on_boundary = boundary.PointAt(la.loop, from + at, &p);
     if (const int v = m.MoveOntoBoundary(f, a, b, p, origin, min_edge); v >= 0) {

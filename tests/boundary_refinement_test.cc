@@ -255,5 +255,55 @@ TEST(BoundaryRefinement, ACrossingNextToANewBoundaryPointMovesOntoIt) {
   }
 }
 
+// A chord just beyond tolerance on a quad cell, whose halves would be shorter than min_edge:
+// instead of a vertex (a triangle more and two short edges) one end slides until the chord is
+// within tolerance (ShortenChord). Flat disk of radius 10, A and B its boundary vertices nearest
+// ±5.4° (measured: ±6°, chord 2.09 m, 0.055 off its polygonal arc; tolerance 0.04), the quad
+// [A, B, D, C] with D, C at radius 8; min_edge 1.2 (halves 1.05), slides up to 0.5: the
+// chord is shortened to 1.80 m, exactly within tolerance, by one slide. With
+// min_edge 0.5 the chord is cut.
+TEST(BoundaryRefinement, AChordWithTooShortPiecesOnAQuadIsShortenedInstead) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  const ReferenceBoundary boundary(s);
+  const double tolerance = 0.04;
+  const auto nearest = [&](double degrees) {
+    const Eigen::Vector3d target(10.0 * std::cos(degrees * M_PI / 180.0), 10.0 * std::sin(degrees * M_PI / 180.0), 0.0);
+    int best = -1;
+    for (int v = 0; v < s.num_vertices(); ++v)
+      if (s.is_boundary(v) && (best < 0 || (s.position(v) - target).norm() < (s.position(best) - target).norm())) best = v;
+    return s.position(best);
+  };
+  const auto deviation = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    const auto la = boundary.Locate(a), lb = boundary.Locate(b);
+    const double length = boundary.length(0), span = std::fmod(lb.arc - la.arc + length, length);
+    return span < 0.5 * length ? boundary.ChordDeviation(a, b, 0, la.arc, span)
+                               : boundary.ChordDeviation(b, a, 0, lb.arc, length - span);
+  };
+  for (const double min_edge : {1.2, 0.5}) {
+    const std::vector<Eigen::Vector3d> position = {nearest(-5.4), nearest(5.4), Eigen::Vector3d(8.0, 1.0, 0.0),
+                                                   Eigen::Vector3d(8.0, -1.0, 0.0)};
+    ASSERT_GT(deviation(position[0], position[1]), tolerance);
+    ExtractedMesh out;
+    out.mesh = BuildPolyMesh(position, {{0, 1, 2, 3}}, &out.stats.rejected_faces);
+    out.origin.resize(4);
+    out.origin[0].on_boundary = out.origin[1].on_boundary = true;
+    const int inserted = RefineBoundaryChords(s, tolerance, 0.5, min_edge, &out);
+    const Eigen::Vector3d a = ToEigen(out.mesh.point(VertexHandle(0))), b = ToEigen(out.mesh.point(VertexHandle(1)));
+    std::cout << "min_edge " << min_edge << ": " << inserted << " inserted, " << out.stats.slid_boundary_vertices
+              << " slid, chord " << (a - b).norm() << " m, " << deviation(a, b) << " off\n";
+    if (min_edge > 1.0) {
+      EXPECT_EQ(inserted, 0);
+      EXPECT_EQ(out.stats.slid_boundary_vertices, 1);
+      EXPECT_EQ(out.mesh.n_faces(), 1u);
+      EXPECT_LE(deviation(a, b), tolerance + 1e-9);
+      EXPECT_LE(boundary.Distance(a) + boundary.Distance(b), 1e-9);
+      EXPECT_GT((a - b).norm(), 1.7);  // shortened by little
+    } else {
+      EXPECT_EQ(inserted, 1);
+      EXPECT_EQ(out.mesh.n_faces(), 2u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace pqlayout
