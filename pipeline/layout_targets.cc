@@ -223,6 +223,13 @@ std::string LevelSetCause(const std::string& name, const PipelineState& state, c
          WholeTurnNote(around, state);
 }
 
+// The centre of the pole whose cap lies within 1.5 h of p's cap rim (`At`), or "".
+std::string NearCap(const PipelineState& state, const Eigen::Vector3d& p) {
+  for (const LevelSetCap& cap : state.levelsets.caps)
+    if ((p - cap.centre).norm() < cap.radius + 1.5 * state.config.layout.spacing) return At(cap.centre);
+  return "";
+}
+
 std::string ExtractCause(const std::string& name, const PipelineState& state, const Surroundings& around) {
   const PolyMesh& mesh = state.quads.mesh;
   const ExtractionStats& stats = state.quads.stats;
@@ -244,7 +251,10 @@ std::string ExtractCause(const std::string& name, const PipelineState& state, co
       if (sides == 4) continue;
       if (!touches && ++inner <= 2)
         first += (first.empty() ? "" : "; ") + std::to_string(sides) + "-gon " + around.Describe(centroid(f)) +
-                 (sides == 3   ? " (a quad that lost a corner to a collapsed short edge)"
+                 (sides == 3 && !NearCap(state, centroid(f)).empty()
+                      ? " (two rays of the fan round the pole at " + NearCap(state, centroid(f)) +
+                            " end at one point: the fan loses a ray there)"
+                  : sides == 3 ? " (a quad that lost a corner to a collapsed short edge)"
                   : sides == 5 ? " (a level line ends inside: a branch point)"
                                : " (a large cell that the split into quads refused: its quads would have angles outside 20°–160°)");
       if (touches) (sides == 3 ? boundary_triangles : boundary_other)++;

@@ -118,6 +118,10 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
     else EXPECT_LE(value, known->second) << name;
   }
   EXPECT_EQ(met, targets.at("met").get<int>());
+  if (c.roof == "dome_circular" && c.source == "strain")  // its triangles sit by the pole's cap
+    for (const auto& t : targets.at("list"))
+      if (t.at("name") == "interior_non_quads" && !t.at("met").get<bool>())
+        EXPECT_NE(t.at("cause").get<std::string>().find("the fan loses a ray"), std::string::npos) << t.at("cause");
   const nlohmann::json& stages = report.at("stages");
   const bool pole = c.source == "strain" && (c.roof == "dome_circular" || c.roof == "dome_square");
   if (pole) EXPECT_EQ(stages.at("levelset").at("poles").size(), 1u);
