@@ -66,24 +66,6 @@ void Quadrangulations(const std::vector<int>& polygon, std::vector<std::vector<s
     }
 }
 
-// The smallest corner angle (ShapeAngle) over a cut of `face` into `pieces`, or −1 if a
-// diagonal of the cut is already an edge elsewhere (it would be doubled) or, with
-// `on_boundary` given, joins two boundary vertices (it would run along or across the
-// boundary).
-double CutScore(const Polygons& m, const std::vector<int>& face, const std::vector<std::vector<int>>& pieces,
-                const std::set<std::pair<int, int>>& halfedges, const std::vector<char>* on_boundary) {
-  double score = M_PI;
-  for (const auto& piece : pieces) {
-    score = std::min(score, ShapeAngle(m.position, piece));
-    for (size_t k = 0; k < piece.size(); ++k) {
-      const int a = piece[k], b = piece[(k + 1) % piece.size()];
-      if (CyclicallyAdjacent(face, a, b)) continue;
-      if (halfedges.count({a, b}) || halfedges.count({b, a})) return -1.0;
-      if (on_boundary != nullptr && (*on_boundary)[a] && (*on_boundary)[b]) return -1.0;
-    }
-  }
-  return score;
-}
 
 // The adjacency CollapseRound and CollapseBlocker read.
 struct Adjacency {
@@ -137,6 +119,21 @@ const char* Blocker(const Polygons& m, const Adjacency& adj, int u, int v) {
 }
 
 }  // namespace
+
+double CutScore(const Polygons& m, const std::vector<int>& face, const std::vector<std::vector<int>>& pieces,
+                const std::set<std::pair<int, int>>& halfedges, const std::vector<char>* on_boundary) {
+  double score = M_PI;
+  for (const auto& piece : pieces) {
+    score = std::min(score, ShapeAngle(m.position, piece));
+    for (size_t k = 0; k < piece.size(); ++k) {
+      const int a = piece[k], b = piece[(k + 1) % piece.size()];
+      if (CyclicallyAdjacent(face, a, b)) continue;
+      if (halfedges.count({a, b}) || halfedges.count({b, a})) return -1.0;
+      if (on_boundary != nullptr && (*on_boundary)[a] && (*on_boundary)[b]) return -1.0;
+    }
+  }
+  return score;
+}
 
 const char* CollapseBlocker(const Polygons& m, int u, int v) { return Blocker(m, Adjacency(m), u, v); }
 
@@ -396,73 +393,6 @@ int CollapseBoundaryTriangles(double min_angle, Polygons* m) {
   return collapsed;
 }
 
-constexpr int kCentreGrid = 4;        // CentreSplit's search: (2·4 + 1)² places
-constexpr double kCentreReach = 0.6;   // × the mean corner distance from the vertex average
-
-// An interior 6- or 8-gon that no diagonals cut well (corners alternately sharp and flat, as
-// around a −½ or −1 singularity of the guidance: the GC curvature layout, the canopy, the wavy
-// roof) gets a vertex joined to every other corner: 3 or 4 quads around a new vertex of valence
-// 3 or 4, if every quad angle is within [min_angle, 180° − min_angle]. The vertex goes at the
-// corners' average, or if no quads are good enough there, at the place of a grid round it
-// where the worst quad angle is best (kCentreGrid, kCentreReach); no spoke may be shorter than
-// min_edge. It is
-// marked `centre`: the extraction puts it on the surface (PlaceCentreVertices).
-namespace {
-
-bool CentreSplit(const std::vector<int>& face, const std::set<std::pair<int, int>>& halfedges, double min_angle,
-                 double min_edge, Polygons* m, std::vector<std::vector<int>>* faces) {
-  const size_t n = face.size();
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const int v : face) centroid += m->position[v] / static_cast<double>(n);
-  const int c = static_cast<int>(m->position.size());
-  m->position.push_back(centroid);
-  QuadMeshVertex origin;
-  origin.centre = true;
-  m->origin.push_back(origin);
-  double best_score = min_angle;
-  std::vector<std::vector<int>> best;
-  Eigen::Vector3d best_centre = centroid;
-  const auto try_centre = [&](const Eigen::Vector3d& centre) {
-    m->position[c] = centre;
-    for (size_t parity = 0; parity < 2; ++parity) {
-      std::vector<std::vector<int>> pieces;
-      bool long_enough = true;  // no spoke shorter than min_edge
-      for (size_t k = parity; k < n + parity; k += 2) {
-        pieces.push_back({face[k % n], face[(k + 1) % n], face[(k + 2) % n], c});
-        long_enough = long_enough && (m->position[face[k % n]] - centre).norm() >= min_edge;
-      }
-      if (!long_enough) continue;
-      const double score = CutScore(*m, face, pieces, halfedges, nullptr);
-      if (score >= best_score) best_score = score, best = std::move(pieces), best_centre = centre;
-    }
-  };
-  try_centre(centroid);
-  if (best.empty()) {
-    // The vertex average can sit where some quad gets a sharp or flat corner (a cell with a
-    // long side): search the polygon's plane round it, on a 9 × 9 grid spanning ±0.6 of the
-    // mean corner distance, for the place whose worst quad angle is best.
-    const Eigen::Vector3d normal = NewellNormal(m->position, face);
-    if (normal.squaredNorm() > 0.0) {
-      const Eigen::Vector3d u = normal.unitOrthogonal(), w = normal.cross(u);
-      double radius = 0.0;
-      for (const int v : face) radius += (m->position[v] - centroid).norm() / static_cast<double>(n);
-      for (int i = -kCentreGrid; i <= kCentreGrid; ++i)
-        for (int j = -kCentreGrid; j <= kCentreGrid; ++j)
-          if (i != 0 || j != 0)
-            try_centre(centroid + kCentreReach * radius * (double(i) / kCentreGrid * u + double(j) / kCentreGrid * w));
-    }
-  }
-  if (best.empty()) {
-    m->position.pop_back();
-    m->origin.pop_back();
-    return false;
-  }
-  m->position[c] = best_centre;
-  faces->insert(faces->end(), best.begin(), best.end());
-  return true;
-}
-
-}  // namespace
 
 // Cells that are large polygons are cut into quads by the diagonals that give the
 // best-shaped quads, if every quad angle is within [min_angle, 180° − min_angle]:
@@ -513,7 +443,9 @@ std::pair<int, int> SplitLargePolygons(double min_angle, Polygons* m, double min
       const double score = CutScore(*m, face, pieces, halfedges, touches_boundary ? &on_boundary : nullptr);
       if (score >= best_score) best_score = score, best = &pieces;
     }
-    if (best == nullptr && !touches_boundary && (n == 6 || n == 8) && CentreSplit(face, halfedges, min_angle, min_edge, m, &faces)) {
+    if (best == nullptr && !touches_boundary && (n == 6 || n == 8) &&
+        (CentreSplit(face, halfedges, min_angle, min_edge, m, &faces) ||
+         (n == 8 && QuadAndCentreSplit(face, halfedges, min_angle, min_edge, m, &faces)))) {
       ++split.first;
     } else if (best == nullptr) {
       faces.push_back(std::move(face));

@@ -4,6 +4,7 @@
 // the extraction (quad_extraction.cc); the counts it returns are ExtractionStats.
 #pragma once
 
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -62,6 +63,22 @@ int ResplitBoundaryTrianglePentagonPairs(Polygons* m);
 // min_angle]) removes the triangle and makes both neighbours one side shorter: a triangle and
 // two pentagons become two quads. Boundary corners are never merged away.
 int CollapseBoundaryTriangles(double min_angle, Polygons* m);
+
+// The smallest corner angle (ShapeAngle) over a cut of `face` into `pieces`, or −1 if a
+// diagonal of the cut is already an edge elsewhere (it would be doubled) or, with
+// `on_boundary` given, joins two boundary vertices (it would run along or across the
+// boundary).
+double CutScore(const Polygons& m, const std::vector<int>& face, const std::vector<std::vector<int>>& pieces,
+                const std::set<std::pair<int, int>>& halfedges, const std::vector<char>* on_boundary);
+
+// SplitLargePolygons' last resorts for an interior cell (geometry/quad_cleanup_vertices.cc):
+// CentreSplit (a 6- or 8-gon round a new centre vertex) and QuadAndCentreSplit (an 8-gon: a
+// quad cut off, the hexagon left round a centre vertex). Each appends its quads to `faces`
+// and the vertex to m, or changes nothing and returns false.
+bool CentreSplit(const std::vector<int>& face, const std::set<std::pair<int, int>>& halfedges, double min_angle,
+                 double min_edge, Polygons* m, std::vector<std::vector<int>>* faces);
+bool QuadAndCentreSplit(const std::vector<int>& face, const std::set<std::pair<int, int>>& halfedges,
+                        double min_angle, double min_edge, Polygons* m, std::vector<std::vector<int>>* faces);
 
 // Cells that are large polygons are cut into quads by the diagonals that give the
 // best-shaped quads, if every quad angle is within [min_angle, 180° − min_angle]:

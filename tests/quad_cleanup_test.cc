@@ -104,6 +104,41 @@ static extraction_internal::Polygons StarHexagonInARing(double far0, double far)
   return m;
 }
 
+// The wavy roof × curvature's interior 8-gon (corners rounded to cm; angles 42°, 220°, 171°,
+// 92°, 117°, 174°, 90°, 175°): no two diagonals cut it with every angle in 20°–160°, nor does
+// a vertex joined to every other corner (a reflex or flat corner is left in a quad either
+// way). A quad cut off by one diagonal and the hexagon left split round a centre vertex
+// (valence 3) does: 4 quads. A ring of quads (the corners scaled ×3 about the centroid) keeps
+// it off the boundary.
+TEST(QuadCleanup, AnOctagonWithAReflexCornerGetsAQuadAndACentreVertex) {
+  extraction_internal::Polygons m;
+  const double corners[8][3] = {{10.67, -7.08, 0.12}, {10.63, -4.82, 0.15}, {11.6, -3.6, 0.15}, {12.48, -2.09, 0.22},
+                                {11.33, -1.38, 0.44}, {9.24, -2.65, 0.45},  {7.83, -3.74, 0.61}, {8.96, -5.23, 0.41}};
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& c : corners) centroid += Eigen::Vector3d(c[0], c[1], c[2]) / 8.0;
+  for (int ring = 0; ring < 2; ++ring)
+    for (const auto& c : corners) {
+      m.position.push_back(centroid + (ring ? 3.0 : 1.0) * (Eigen::Vector3d(c[0], c[1], c[2]) - centroid));
+      m.origin.push_back(QuadMeshVertex());
+    }
+  m.faces.push_back({0, 1, 2, 3, 4, 5, 6, 7});
+  for (int k = 0; k < 8; ++k) m.faces.push_back({(k + 1) % 8, k, 8 + k, 8 + (k + 1) % 8});
+  const auto [interior, boundary] = extraction_internal::SplitLargePolygons(extraction_internal::kMinResplitAngle, &m);
+  EXPECT_EQ(interior, 1);
+  EXPECT_EQ(boundary, 0);
+  ASSERT_EQ(m.position.size(), 17u);
+  EXPECT_TRUE(m.origin[16].centre);
+  ASSERT_EQ(m.faces.size(), 12u);
+  int around = 0;
+  for (const auto& face : m.faces) {
+    EXPECT_EQ(face.size(), 4u);
+    around += std::count(face.begin(), face.end(), 16);
+    if (std::all_of(face.begin(), face.end(), [](int v) { return v < 8 || v == 16; }))
+      EXPECT_GE(ShapeAngle(m.position, face), extraction_internal::kMinResplitAngle);
+  }
+  EXPECT_EQ(around, 3);
+}
+
 // An interior hexagon with corners alternately 1 and 0.6 from its centre: every cut by a
 // diagonal leaves a quad with a 13° corner (below the 20° bound), so it used to stay a
 // hexagon; around a centre vertex joined to the three near corners each quad's smallest
