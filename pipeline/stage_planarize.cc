@@ -28,7 +28,7 @@ Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json*
   PlanarizeReport report;
   state->planarized = state->quads;
   PQ_RETURN_IF_ERROR(PlanarizeMesh(*state->surface, state->config.planarize, state->config.layout.spacing,
-                                   &state->planarized, &report));
+                                   &state->planarized, &report, state->config.extract.min_edge));
   *metrics = report.ToJson();
   const double h = state->config.layout.spacing;
   if (report.planarity_max > state->config.planarize.target_delta)
@@ -37,6 +37,11 @@ Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json*
   LOG(INFO) << "planarize: δ max " << report.planarity_max << " (mean " << report.planarity_mean << "), closeness max "
             << report.closeness_max / h << " h, boundary " << report.boundary_deviation / h << " h, moved ≤ "
             << report.max_displacement / h << " h";
+  if (report.folded_faces > 0 || report.edges_below_min_edge > 0)
+    LOG(WARNING) << "planarize: planarity was bought with panel shape: " << report.folded_faces
+                 << " panels convex when extracted are folded or have a reflex corner now, and "
+                 << report.edges_below_min_edge << " edges are shorter than extract.min_edge (the shortest "
+                 << report.edge_length_min << " h): the layout is not conjugate enough there";
   PolyMesh& mesh = state->planarized.mesh;
   const double target = state->config.planarize.target_delta;
   PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads_planarized"));

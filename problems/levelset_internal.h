@@ -6,6 +6,7 @@
 #include <ceres/ceres.h>
 
 #include <array>
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -93,13 +94,19 @@ void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, do
 // levelset_metrics.cc
 LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g, const std::vector<double>& phi, const std::vector<double>& psi, double min_angle_deg);
 
+// The rest of a layout's solve, to be run at most once, before *solution is moved or read
+// for φ, ψ: the crossing rounds, the final metrics and whatever the caller's layers do after.
+using Finish = std::function<Status()>;
+
 // levelset_problem.cc
-Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams, LevelSetSolution* solution);
+// finish: null, the whole solve; else it stops after the joint solve with solution->metrics
+// measured there and leaves the rounds in *finish (SolveLevelSets compares layouts there).
+Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams, LevelSetSolution* solution, Finish* finish = nullptr);
 
 // levelset_solve.cc
 GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceField& g, const SurfaceModel& working);
 std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double h, int* cancelled, std::vector<Eigen::Vector3d>* crowns);
-Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSolution* solution);
+Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSolution* solution, Finish* finish = nullptr);
 
 // levelset_poles.cc
 std::vector<LevelSetCap> FindCaps(const SurfaceModel& s, const GuidanceField& g, double h);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <tuple>
 #include <utility>
 
@@ -448,21 +449,35 @@ Status LevelSetProblem::Rounds() {
 // seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the
 // offsets are set here.
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
-                   LevelSetSeams* seams, LevelSetSolution* solution) {
+                   LevelSetSeams* seams, LevelSetSolution* solution, Finish* finish) {
   if (seams != nullptr && seams->cut == nullptr) seams = nullptr;
-  const LevelSetGeometry geo = Precompute(s);
-  const std::vector<InteriorEdge> edges = InteriorEdges(s, geo);
-  PQ_RETURN_IF_ERROR(InitialGuess(s, geo, edges, g, options, h, seams, solution));
-  LevelSetProblem problem(s, geo, edges, g, options, h, seams,
-                          seams != nullptr ? SeamEdgeTerms(s, geo, *seams->cut) : std::vector<SeamEdgeTerm>(),
-                          solution);
+  // On the heap: with `finish` the problem outlives this call.
+  struct State {
+    LevelSetGeometry geo;
+    std::vector<InteriorEdge> edges;
+    std::unique_ptr<LevelSetProblem> problem;
+  };
+  auto state = std::make_shared<State>();
+  state->geo = Precompute(s);
+  state->edges = InteriorEdges(s, state->geo);
+  PQ_RETURN_IF_ERROR(InitialGuess(s, state->geo, state->edges, g, options, h, seams, solution));
+  state->problem = std::make_unique<LevelSetProblem>(
+      s, state->geo, state->edges, g, options, h, seams,
+      seams != nullptr ? SeamEdgeTerms(s, state->geo, *seams->cut) : std::vector<SeamEdgeTerm>(), solution);
+  LevelSetProblem& problem = *state->problem;
   problem.Project();
   solution->initial = problem.Measure();
   PQ_RETURN_IF_ERROR(problem.SolvePhi());
   PQ_RETURN_IF_ERROR(problem.SolvePsi());
   PQ_RETURN_IF_ERROR(problem.SolveJoint());
-  PQ_RETURN_IF_ERROR(problem.Rounds());
+  const auto rounds = [state, solution]() {
+    PQ_RETURN_IF_ERROR(state->problem->Rounds());
+    solution->metrics = state->problem->Measure();
+    return Status::Ok();
+  };
+  if (finish == nullptr) return rounds();
   solution->metrics = problem.Measure();
+  *finish = rounds;
   return Status::Ok();
 }
 

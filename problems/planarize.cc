@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry/closest_point.h"
+#include "geometry/polygon_shape.h"
 #include "solver/ceres_options.h"
 #include "geometry/planarity.h"
 #include "problems/planarize.h"
@@ -31,10 +33,51 @@ std::vector<double> FacePlanarity(const PolyMesh& mesh) {
   return delta;
 }
 
+void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start, double spacing,
+                        double min_edge, PlanarizeReport* report) {
+  std::vector<Eigen::Vector3d> now(mesh.n_vertices());
+  for (const auto v : mesh.vertices()) now[v.idx()] = ToEigen(mesh.point(v));
+  report->edge_length_min = std::numeric_limits<double>::infinity();
+  report->edges_below_min_edge = 0;
+  for (const auto e : mesh.edges()) {
+    const auto he = mesh.halfedge_handle(e, 0);
+    const double length = (now[mesh.to_vertex_handle(he).idx()] - now[mesh.from_vertex_handle(he).idx()]).norm() / spacing;
+    report->edge_length_min = std::min(report->edge_length_min, length);
+    report->edges_below_min_edge += length < min_edge;
+  }
+  if (mesh.n_edges() == 0) report->edge_length_min = 0.0;
+  report->folded_faces = 0;
+  report->folded_at = nlohmann::json::array();
+  for (const auto f : mesh.faces()) {
+    std::vector<int> ids;
+    for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx());
+    const Eigen::Vector3d n = NewellNormal(start, ids);
+    const auto turns_all = [&](const std::vector<Eigen::Vector3d>& p) {
+      const size_t m = ids.size();
+      for (size_t k = 0; k < m; ++k) {
+        const Eigen::Vector3d& a = p[ids[(k + m - 1) % m]];
+        const Eigen::Vector3d& b = p[ids[k]];
+        const Eigen::Vector3d& c = p[ids[(k + 1) % m]];
+        if (!(n.dot((b - a).cross(c - b)) > 0.0)) return false;
+      }
+      return true;
+    };
+    if (!turns_all(start) || turns_all(now)) continue;
+    ++report->folded_faces;
+    if (report->folded_at.size() < 10) {
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (const int v : ids) centroid += now[v] / static_cast<double>(ids.size());
+      report->folded_at.push_back({centroid.x(), centroid.y(), centroid.z()});
+    }
+  }
+}
+
 nlohmann::json PlanarizeReport::ToJson() const {
   return {{"planarity_max", planarity_max},   {"planarity_mean", planarity_mean},
           {"closeness_max", closeness_max},   {"closeness_mean", closeness_mean},
           {"boundary_deviation", boundary_deviation}, {"max_displacement", max_displacement},
+          {"edge_length_min", edge_length_min}, {"edges_below_min_edge", edges_below_min_edge},
+          {"folded_faces", folded_faces}, {"folded_at", folded_at},
           {"max_displacement_edges", max_displacement_edges}, {"rounds", rounds},
           {"iterations", iterations},         {"ceres", ceres}};
 }
@@ -254,7 +297,7 @@ void MeasureDisplacement(const PolyMesh& mesh, const std::vector<Eigen::Vector3d
 }  // namespace
 
 Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double h, ExtractedMesh* extracted,
-                     PlanarizeReport* report) {
+                     PlanarizeReport* report, double min_edge) {
   PolyMesh& mesh = extracted->mesh;
   const ClosestPointQuery& query = reference.closest_points();
   PlanarizeData data = PrepareData(*extracted, query, h);
@@ -299,6 +342,7 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
     }
   }
   MeasureDisplacement(mesh, data.start, report);
+  MeasurePanelShapes(mesh, data.start, h, min_edge, report);
   return Status::Ok();
 }
 

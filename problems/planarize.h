@@ -41,15 +41,29 @@ struct PlanarizeReport {
   double boundary_deviation = 0.0;                   // boundary vertices to the reference boundary, m
   double max_displacement = 0.0;                     // from the extracted mesh, m
   double max_displacement_edges = 0.0;               // ... in mean edge lengths of the extracted mesh
+  // What planarity cost the panels' shapes (measured, not prevented: README, planarisation):
+  double edge_length_min = 0.0;                      // shortest edge, relative to h
+  int edges_below_min_edge = 0;                      // edges now shorter than extract.min_edge × h
+  int folded_faces = 0;                              // convex when extracted, now not: a corner
+                                                     // turned inside out or the panel folded
+  nlohmann::json folded_at = nlohmann::json::array();  // centroids of the first 10 of them
   int rounds = 0;
   int iterations = 0;                                // Ceres iterations, all rounds
   nlohmann::json ceres = nlohmann::json::array();    // one summary per round
   nlohmann::json ToJson() const;
 };
 
-// Planarises mesh in place (its origin flags: on_boundary, corner).
+// Planarises mesh in place (its origin flags: on_boundary, corner). min_edge: extract.min_edge
+// (× spacing), for edges_below_min_edge.
 Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double spacing,
-                     ExtractedMesh* mesh, PlanarizeReport* report);
+                     ExtractedMesh* mesh, PlanarizeReport* report, double min_edge = 0.2);
+
+// The panel-shape metrics of `report` (edge_length_min, edges_below_min_edge, folded_faces,
+// folded_at) of `mesh` against its vertex positions `start` (the extracted mesh): a face is
+// folded if every corner turned the same way round its extracted polygon's normal there and
+// one no longer does.
+void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start, double spacing,
+                        double min_edge, PlanarizeReport* report);
 
 // δ of every face of a polygon mesh.
 std::vector<double> FacePlanarity(const PolyMesh& mesh);

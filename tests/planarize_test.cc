@@ -220,6 +220,42 @@ ExtractedMesh QuadGrid(int nx, int ny, double cell, Height height) {
   return out;
 }
 
+// Panel shapes after planarisation (MeasurePanelShapes): a 2 × 1 grid of unit quads. With the
+// middle column's two vertices swapped both quads fold into bow-ties (2 folded faces); with
+// the right quad squeezed to a bottom edge of 0.05 it stays convex (none folded), the
+// shortest edge is 0.05 and it is counted below min_edge = 0.2; the grid as extracted has neither.
+TEST(PanelShapes, AFoldedQuadAndAShortEdgeAreCounted) {
+  ExtractedMesh grid = QuadGrid(2, 1, 1.0, [](double, double) { return 0.0; });
+  std::vector<Eigen::Vector3d> start;
+  for (const auto v : grid.mesh.vertices()) start.push_back(ToEigen(grid.mesh.point(v)));
+  PlanarizeReport same;
+  MeasurePanelShapes(grid.mesh, start, 1.0, 0.2, &same);
+  EXPECT_EQ(same.folded_faces, 0);
+  EXPECT_EQ(same.edges_below_min_edge, 0);
+  EXPECT_DOUBLE_EQ(same.edge_length_min, 1.0);
+  const auto at = [&](double x, double y) -> VertexHandle {
+    for (const auto v : grid.mesh.vertices())
+      if ((ToEigen(grid.mesh.point(v)) - Eigen::Vector3d(x, y, 0.0)).norm() < 1e-9) return v;
+    ADD_FAILURE() << "no vertex at " << x << ", " << y;
+    return VertexHandle();
+  };
+  const VertexHandle a = at(1, 0), b = at(1, 1), c = at(2, 0);
+  grid.mesh.set_point(a, {1.0, 1.0, 0.0});  // the middle column's two vertices swapped: both quads fold
+  grid.mesh.set_point(b, {1.0, 0.0, 0.0});
+  PlanarizeReport folded;
+  MeasurePanelShapes(grid.mesh, start, 1.0, 0.2, &folded);
+  EXPECT_EQ(folded.folded_faces, 2);
+  EXPECT_EQ(folded.folded_at.size(), 2u);
+  grid.mesh.set_point(a, {1.0, 0.0, 0.0});
+  grid.mesh.set_point(b, {1.0, 1.0, 0.0});
+  grid.mesh.set_point(c, {1.05, 0.0, 0.0});  // the right quad squeezed, still convex
+  PlanarizeReport squeezed;
+  MeasurePanelShapes(grid.mesh, start, 1.0, 0.2, &squeezed);
+  EXPECT_EQ(squeezed.folded_faces, 0);
+  EXPECT_NEAR(squeezed.edge_length_min, 0.05, 1e-12);
+  EXPECT_GE(squeezed.edges_below_min_edge, 1);
+}
+
 TEST(Planarize, NoisyPlanarGridReturnsToItsPlane) {
   auto flat = [](double, double) { return 0.0; };
   const SurfaceModel reference(testing::ToMesh(testing::GridSoup(6, flat)));
