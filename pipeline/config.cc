@@ -247,6 +247,10 @@ KeyTable::KeyTable(Config* c) {
          "× the planarity weight: no edge shrinks below a quarter of its extracted length (or of h); 0: off");
   Number("planarize.target_delta", &c->planarize.target_delta, Positive(1.0), "stop when max planarity δ ≤ target_delta");
   Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (planarity weight raised after each)");
+  Number("planarize.close_edges", &c->planarize.close_edges, NonNegative(1.0),
+         "edges that planarisation shortens below close_edges × h are closed (their ends one vertex: a quad "
+         "becomes the triangle it has turned into) and the mesh planarised again, up to 5 passes; planar quads "
+         "with a reflex corner are then cut into two triangles (0: neither)");
 
   auto& st = c->stiffen;
   Number("stiffen.tolerance", &st.tolerance, NonNegative(kMaxLength),

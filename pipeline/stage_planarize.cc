@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "geometry/panel_repair.h"
 #include "geometry/mesh_io.h"
 #include "pipeline/stages.h"
 #include "problems/planarize.h"
@@ -24,24 +25,56 @@ Status WriteShellMesh(const PolyMesh& shell, double target_delta, OutputFiles* o
   return WriteMesh(mesh, out->Path(name + ".ply"));
 }
 
+// Planarisation passes: after each, the edges it closed (shorter than kClosedEdge × h) are
+// closed for good (geometry/panel_repair.h) and the mesh planarised again.
+constexpr double kClosedEdge = 0.05;
+constexpr int kMaxPasses = 5;
+
 Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
+  const double h = state->config.layout.spacing;
   PlanarizeReport report;
   state->planarized = state->quads;
-  PQ_RETURN_IF_ERROR(PlanarizeMesh(*state->surface, state->config.planarize, state->config.layout.spacing,
-                                   &state->planarized, &report, state->config.extract.min_edge));
+  std::vector<Eigen::Vector3d> start;
+  for (const auto v : state->quads.mesh.vertices()) start.push_back(ToEigen(state->quads.mesh.point(v)));
+  int rounds = 0, iterations = 0, closed = 0, passes = 0;
+  nlohmann::json ceres = nlohmann::json::array();
+  const double closed_edge = state->config.planarize.close_edges;
+  for (;;) {
+    report = PlanarizeReport();
+    PQ_RETURN_IF_ERROR(PlanarizeMesh(*state->surface, state->config.planarize, h, &state->planarized, &report));
+    ++passes;
+    rounds += report.rounds, iterations += report.iterations;
+    for (const auto& c : report.ceres) ceres.push_back(c);
+    if (passes == kMaxPasses || closed_edge <= 0.0) break;
+    const int now = CloseShortEdges(closed_edge * h, &state->planarized, &start);
+    if (now == 0) break;
+    closed += now;
+    LOG(INFO) << "planarize: " << now << " edges closed (shorter than " << closed_edge
+              << " h): their ends are one vertex now; planarising again";
+  }
+  report.rounds = rounds, report.iterations = iterations, report.ceres = ceres;
+  report.closed_edges = closed, report.passes = passes;
+  if (closed_edge > 0.0) report.darts_cut = CutDarts(&state->planarized);
+  MeasurePanelShapes(state->planarized.mesh, start, h, state->config.extract.min_edge, &report);
   *metrics = report.ToJson();
-  const double h = state->config.layout.spacing;
   if (report.planarity_max > state->config.planarize.target_delta)
     LOG(WARNING) << "planarize: δ max " << report.planarity_max << " is above planarize.target_delta "
                  << state->config.planarize.target_delta << " after " << report.rounds << " rounds";
   LOG(INFO) << "planarize: δ max " << report.planarity_max << " (mean " << report.planarity_mean << "), closeness max "
             << report.closeness_max / h << " h, boundary " << report.boundary_deviation / h << " h, moved ≤ "
             << report.max_displacement / h << " h";
-  if (report.folded_faces > 0 || report.edges_below_min_edge > 0)
-    LOG(WARNING) << "planarize: planarity was bought with panel shape: " << report.folded_faces
-                 << " panels convex when extracted are folded or have a reflex corner now, and "
-                 << report.edges_below_min_edge << " edges are shorter than extract.min_edge (the shortest "
-                 << report.edge_length_min << " h): the layout is not conjugate enough there";
+  if (report.closed_edges > 0 || report.darts_cut > 0)
+    LOG(INFO) << "planarize: " << report.closed_edges << " edges closed and " << report.darts_cut
+              << " darts cut in two over " << report.passes << " passes (planarize.close_edges)";
+  if (report.edges_below_min_edge > 0)
+    LOG(INFO) << "planarize: " << report.edges_below_min_edge << " edges shorter than extract.min_edge (the shortest "
+              << report.edge_length_min << " h)";
+  if (report.folded_faces > 0) {
+    const auto& at = report.folded_at[0];
+    LOG(WARNING) << "planarize: " << report.folded_faces << " panels convex when extracted are folded or have a "
+                 << "corner turned inside out (the first at (" << at[0].get<double>() << ", " << at[1].get<double>()
+                 << ")): the layout is not conjugate enough there";
+  }
   PolyMesh& mesh = state->planarized.mesh;
   const double target = state->config.planarize.target_delta;
   PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads_planarized"));

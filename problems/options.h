@@ -121,6 +121,7 @@ struct PlanarizeOptions {
   PlanarizeWeights weights;
   double target_delta = 1e-3;  // stop when max planarity δ ≤ target
   int max_rounds = 20;         // outer rounds (closest-point refresh, planarity weight raise)
+  double close_edges = 0.1;    // × h: edges planarisation shortens below this are closed, then planarised again (0: never)
 };
 
 struct StiffenWeights {

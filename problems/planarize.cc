@@ -48,6 +48,10 @@ void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>
   if (mesh.n_edges() == 0) report->edge_length_min = 0.0;
   report->folded_faces = 0;
   report->folded_at = nlohmann::json::array();
+  report->n_faces = static_cast<int>(mesh.n_faces());
+  int quads = 0;
+  for (const auto f : mesh.faces()) quads += mesh.valence(f) == 4;
+  report->quad_fraction = mesh.n_faces() > 0 ? static_cast<double>(quads) / mesh.n_faces() : 0.0;
   for (const auto f : mesh.faces()) {
     std::vector<int> ids;
     for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx());
@@ -78,6 +82,8 @@ nlohmann::json PlanarizeReport::ToJson() const {
           {"boundary_deviation", boundary_deviation}, {"max_displacement", max_displacement},
           {"edge_length_min", edge_length_min}, {"edges_below_min_edge", edges_below_min_edge},
           {"folded_faces", folded_faces}, {"folded_at", folded_at},
+          {"closed_edges", closed_edges}, {"passes", passes}, {"darts_cut", darts_cut},
+          {"n_faces", n_faces}, {"quad_fraction", quad_fraction},
           {"max_displacement_edges", max_displacement_edges}, {"rounds", rounds},
           {"iterations", iterations},         {"ceres", ceres}};
 }
@@ -297,7 +303,7 @@ void MeasureDisplacement(const PolyMesh& mesh, const std::vector<Eigen::Vector3d
 }  // namespace
 
 Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double h, ExtractedMesh* extracted,
-                     PlanarizeReport* report, double min_edge) {
+                     PlanarizeReport* report) {
   PolyMesh& mesh = extracted->mesh;
   const ClosestPointQuery& query = reference.closest_points();
   PlanarizeData data = PrepareData(*extracted, query, h);
@@ -342,7 +348,6 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
     }
   }
   MeasureDisplacement(mesh, data.start, report);
-  MeasurePanelShapes(mesh, data.start, h, min_edge, report);
   return Status::Ok();
 }
 

@@ -47,21 +47,26 @@ struct PlanarizeReport {
   int folded_faces = 0;                              // convex when extracted, now not: a corner
                                                      // turned inside out or the panel folded
   nlohmann::json folded_at = nlohmann::json::array();  // centroids of the first 10 of them
+  int closed_edges = 0;                              // edges closed between passes (stage_planarize.cc)
+  int passes = 1;                                    // planarisations run
+  int darts_cut = 0;                                 // planar quads with a reflex corner cut in two triangles
+  int n_faces = 0;                                   // of the planarised mesh (after the repair)
+  double quad_fraction = 0.0;                        // ... and its share of quads
   int rounds = 0;
   int iterations = 0;                                // Ceres iterations, all rounds
   nlohmann::json ceres = nlohmann::json::array();    // one summary per round
   nlohmann::json ToJson() const;
 };
 
-// Planarises mesh in place (its origin flags: on_boundary, corner). min_edge: extract.min_edge
-// (× spacing), for edges_below_min_edge.
+// Planarises mesh in place (its origin flags: on_boundary, corner). The panel-shape metrics
+// are left to MeasurePanelShapes.
 Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double spacing,
-                     ExtractedMesh* mesh, PlanarizeReport* report, double min_edge = 0.2);
+                     ExtractedMesh* mesh, PlanarizeReport* report);
 
 // The panel-shape metrics of `report` (edge_length_min, edges_below_min_edge, folded_faces,
-// folded_at) of `mesh` against its vertex positions `start` (the extracted mesh): a face is
-// folded if every corner turned the same way round its extracted polygon's normal there and
-// one no longer does.
+// folded_at, n_faces, quad_fraction) of `mesh` against its vertex positions `start` (the
+// extracted mesh): a face is folded if every corner turned the same way round its extracted
+// polygon's normal there and one no longer does.
 void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start, double spacing,
                         double min_edge, PlanarizeReport* report);
 

@@ -4,6 +4,7 @@
 // staying on the cylinder.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <memory>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <limits>
 #include <algorithm>
 
+#include "geometry/panel_repair.h"
 #include "geometry/planarity.h"
 #include "problems/planarize.h"
 #include "problems/residuals/anchor_residual.h"
@@ -254,6 +256,54 @@ TEST(PanelShapes, AFoldedQuadAndAShortEdgeAreCounted) {
   EXPECT_EQ(squeezed.folded_faces, 0);
   EXPECT_NEAR(squeezed.edge_length_min, 0.05, 1e-12);
   EXPECT_GE(squeezed.edges_below_min_edge, 1);
+}
+
+std::map<int, int> FaceSides(const PolyMesh& mesh) {
+  std::map<int, int> sides;
+  for (const auto f : mesh.faces()) ++sides[static_cast<int>(mesh.valence(f))];
+  return sides;
+}
+
+// CloseShortEdges: in a 2 × 1 grid whose right quad planarisation squeezed to a bottom edge of
+// 0.01 (a boundary vertex slid next to the corner), that edge is closed and the corner keeps
+// its place: one quad and one triangle, 5 vertices, the start positions carried to the
+// vertices left. With a threshold of 0.005 nothing is closed.
+TEST(PanelRepair, AClosedEdgeMakesTheQuadTheTriangleItIs) {
+  ExtractedMesh grid = QuadGrid(2, 1, 1.0, [](double, double) { return 0.0; });
+  std::vector<Eigen::Vector3d> start;
+  for (const auto v : grid.mesh.vertices()) start.push_back(ToEigen(grid.mesh.point(v)));
+  grid.mesh.set_point(VertexHandle(1), {1.99, 0.0, 0.0});  // (1, 0) slid next to the corner (2, 0)
+  std::vector<Eigen::Vector3d> carried = start;
+  EXPECT_EQ(CloseShortEdges(0.005, &grid, &carried), 0);
+  EXPECT_EQ(CloseShortEdges(0.05, &grid, &carried), 1);
+  EXPECT_EQ(grid.mesh.n_vertices(), 5u);
+  EXPECT_EQ(grid.origin.size(), 5u);
+  ASSERT_EQ(carried.size(), 5u);
+  EXPECT_EQ(FaceSides(grid.mesh), (std::map<int, int>{{3, 1}, {4, 1}}));
+  for (const auto v : grid.mesh.vertices()) {  // the corner kept its place; (1, 0) is gone
+    EXPECT_GT((ToEigen(grid.mesh.point(v)) - Eigen::Vector3d(1.99, 0.0, 0.0)).norm(), 1e-9);
+    EXPECT_TRUE(std::find(start.begin(), start.end(), carried[v.idx()]) != start.end());
+  }
+}
+
+// CutDarts: a planar quad with one reflex corner becomes the two triangles on either side of
+// the diagonal from that corner (both convex); a convex quad and a bow-tie are left alone.
+TEST(PanelRepair, ADartIsCutIntoItsTwoTriangles) {
+  ExtractedMesh grid = QuadGrid(2, 1, 1.0, [](double, double) { return 0.0; });
+  grid.mesh.set_point(VertexHandle(4), {0.3, 0.3, 0.0});  // (1, 1) pushed inside the left quad: a dart
+  EXPECT_EQ(CutDarts(&grid), 1);
+  EXPECT_EQ(FaceSides(grid.mesh), (std::map<int, int>{{3, 2}, {4, 1}}));
+  for (const auto f : grid.mesh.faces()) {
+    std::vector<Eigen::Vector3d> p;
+    for (const auto v : grid.mesh.fv_range(f)) p.push_back(ToEigen(grid.mesh.point(v)));
+    if (p.size() == 3) EXPECT_GT((p[1] - p[0]).cross(p[2] - p[1]).z(), 0.0);  // convex, facing up
+  }
+  ExtractedMesh bowtie = QuadGrid(2, 1, 1.0, [](double, double) { return 0.0; });
+  bowtie.mesh.set_point(VertexHandle(1), {1.0, 1.0, 0.0});  // the middle column swapped
+  bowtie.mesh.set_point(VertexHandle(4), {1.0, 0.0, 0.0});
+  EXPECT_EQ(CutDarts(&bowtie), 0);
+  ExtractedMesh convex = QuadGrid(2, 1, 1.0, [](double, double) { return 0.0; });
+  EXPECT_EQ(CutDarts(&convex), 0);
 }
 
 TEST(Planarize, NoisyPlanarGridReturnsToItsPlane) {

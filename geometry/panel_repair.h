@@ -1,0 +1,30 @@
+// Panels that planarisation degenerated, repaired topologically. On a net that is not conjugate enough, planarisation makes
+// some quads planar by running two of their vertices into each other (or past each other,
+// folding the panel): such a quad is a triangle with a joint in one corner. CloseShortEdges
+// makes that explicit: the two ends of every edge shorter than min_length become one vertex,
+// by the extraction's collapse rules (geometry/quad_cleanup.h, CollapseRound: a corner or
+// boundary vertex keeps its place, no collapse that would pinch the mesh, disjoint
+// neighbourhoods per round), so the quad is the triangle it has become, a pentagon a quad,
+// and two vertices that slid past each other are one again. The caller planarises again.
+// CutDarts: a planar quad with one reflex corner (a dart: δ, which measures the distance
+// between the diagonals' lines, cannot see it) is cut along the diagonal from that corner
+// into the two convex triangles it is made of; the vertices do not move, so nothing needs
+// planarising again.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/quad_extraction.h"
+
+namespace pqlayout {
+
+// Returns the number of edges closed. `start`: one position per vertex of *mesh (e.g. where
+// the extraction put it), carried along to the vertices that remain.
+int CloseShortEdges(double min_length, ExtractedMesh* mesh, std::vector<Eigen::Vector3d>* start);
+
+// Returns the number of darts cut (each then two triangles).
+int CutDarts(ExtractedMesh* mesh);
+
+}  // namespace pqlayout
