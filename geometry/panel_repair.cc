@@ -48,13 +48,9 @@ int CutDarts(ExtractedMesh* mesh) {
     for (const auto v : mesh->mesh.fv_range(f)) face.push_back(v.idx());
     int reflex = -1, count = 0;
     if (face.size() == 4) {
-      const Eigen::Vector3d n = NewellNormal(position, face);
-      for (int k = 0; k < 4; ++k) {
-        const Eigen::Vector3d& a = position[face[(k + 3) % 4]];
-        const Eigen::Vector3d& b = position[face[k]];
-        const Eigen::Vector3d& c = position[face[(k + 1) % 4]];
-        if (n.dot((b - a).cross(c - b)) < 0.0) reflex = k, ++count;
-      }
+      const std::vector<double> turns = CornerTurns(position, face, NewellNormal(position, face));
+      for (int k = 0; k < 4; ++k)
+        if (turns[k] < 0.0) reflex = k, ++count;
     }
     if (count != 1) {
       faces.push_back(std::move(face));

@@ -30,4 +30,17 @@ double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vecto
   return normal.norm() > 0.0 ? ShapeAngle(position, polygon, normal) : -1.0;
 }
 
+std::vector<double> CornerTurns(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon,
+                                const Eigen::Vector3d& normal) {
+  const size_t m = polygon.size();
+  std::vector<double> turns(m);
+  for (size_t k = 0; k < m; ++k) {
+    const Eigen::Vector3d& a = position[polygon[(k + m - 1) % m]];
+    const Eigen::Vector3d& b = position[polygon[k]];
+    const Eigen::Vector3d& c = position[polygon[(k + 1) % m]];
+    turns[k] = normal.dot((b - a).cross(c - b));
+  }
+  return turns;
+}
+
 }  // namespace pqlayout

@@ -22,4 +22,9 @@ double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vecto
 // The same in the polygon's own (Newell) plane; −1 for a degenerate polygon.
 double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon);
 
+// n · (e_in × e_out) at every corner: positive where the polygon turns the way of `normal`
+// (convex there), negative where it is reflex or folded.
+std::vector<double> CornerTurns(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon,
+                                const Eigen::Vector3d& normal);
+
 }  // namespace pqlayout

@@ -57,13 +57,8 @@ void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>
     for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx());
     const Eigen::Vector3d n = NewellNormal(start, ids);
     const auto turns_all = [&](const std::vector<Eigen::Vector3d>& p) {
-      const size_t m = ids.size();
-      for (size_t k = 0; k < m; ++k) {
-        const Eigen::Vector3d& a = p[ids[(k + m - 1) % m]];
-        const Eigen::Vector3d& b = p[ids[k]];
-        const Eigen::Vector3d& c = p[ids[(k + 1) % m]];
-        if (!(n.dot((b - a).cross(c - b)) > 0.0)) return false;
-      }
+      for (const double t : CornerTurns(p, ids, n))
+        if (!(t > 0.0)) return false;
       return true;
     };
     if (!turns_all(start) || turns_all(now)) continue;
