@@ -1,6 +1,11 @@
 // CloseShortEdges and CutDarts (panel_repair.h).
 #include "geometry/panel_repair.h"
 
+#include <algorithm>
+#include <limits>
+#include <set>
+#include <utility>
+
 #include "geometry/polygon_shape.h"
 #include "geometry/quad_cleanup.h"
 
@@ -66,6 +71,65 @@ int CutDarts(ExtractedMesh* mesh) {
   mesh->mesh = BuildPolyMesh(position, faces, &rejected);
   mesh->stats.rejected_faces += rejected;
   return cut;
+}
+
+namespace {
+
+// The fan of `polygon` from its corner k.
+std::vector<std::vector<int>> Fan(const std::vector<int>& polygon, size_t k) {
+  std::vector<std::vector<int>> fan;
+  const size_t m = polygon.size();
+  for (size_t i = 1; i + 1 < m; ++i)
+    fan.push_back({polygon[k], polygon[(k + i) % m], polygon[(k + i + 1) % m]});
+  return fan;
+}
+
+}  // namespace
+
+int SplitFoldedPanels(const std::vector<Eigen::Vector3d>& start, ExtractedMesh* mesh) {
+  std::vector<Eigen::Vector3d> now;
+  for (const auto v : mesh->mesh.vertices()) now.push_back(ToEigen(mesh->mesh.point(v)));
+  std::set<std::pair<int, int>> edges;  // a diagonal that is an edge already would pinch the mesh
+  for (const auto e : mesh->mesh.edges()) {
+    const auto he = mesh->mesh.halfedge_handle(e, 0);
+    const int a = mesh->mesh.from_vertex_handle(he).idx(), b = mesh->mesh.to_vertex_handle(he).idx();
+    edges.insert({std::min(a, b), std::max(a, b)});
+  }
+  std::vector<std::vector<int>> faces;
+  int split = 0;
+  for (const auto f : mesh->mesh.faces()) {
+    std::vector<int> face;
+    for (const auto v : mesh->mesh.fv_range(f)) face.push_back(v.idx());
+    if (face.size() < 4 || !FoldedSince(start, now, face)) {
+      faces.push_back(std::move(face));
+      continue;
+    }
+    const Eigen::Vector3d n = NewellNormal(start, face);
+    size_t best = face.size();
+    double best_area = -std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < face.size(); ++k) {
+      double smallest = std::numeric_limits<double>::infinity();
+      bool free = true;
+      for (const auto& t : Fan(face, k))
+        smallest = std::min(smallest, n.dot((now[t[1]] - now[t[0]]).cross(now[t[2]] - now[t[0]])));
+      for (size_t i = 2; i + 2 <= face.size(); ++i) {
+        const int a = face[k], b = face[(k + i) % face.size()];
+        free = free && !edges.count({std::min(a, b), std::max(a, b)});
+      }
+      if (free && smallest > best_area) best_area = smallest, best = k;
+    }
+    if (best == face.size()) {
+      faces.push_back(std::move(face));
+      continue;
+    }
+    for (auto& t : Fan(face, best)) faces.push_back(std::move(t));
+    ++split;
+  }
+  if (split == 0) return 0;
+  int rejected = 0;
+  mesh->mesh = BuildPolyMesh(now, faces, &rejected);
+  mesh->stats.rejected_faces += rejected;
+  return split;
 }
 
 }  // namespace pqlayout

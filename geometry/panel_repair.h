@@ -27,4 +27,12 @@ int CloseShortEdges(double min_length, ExtractedMesh* mesh, std::vector<Eigen::V
 // Returns the number of darts cut (each then two triangles).
 int CutDarts(ExtractedMesh* mesh);
 
+// SplitFoldedPanels: a polygon that planarisation folded (FoldedSince, polygon_shape.h, against
+// `start`) is cut into the fan of triangles, from the corner whose fan is the least folded now
+// (the largest smallest signed area round the polygon's normal at `start`): triangles need
+// no planarity, so the next planarisation can open them again (it holds every triangle
+// open: problems/residuals/triangle_orientation_residual.h). Returns the number of polygons
+// cut; vertices neither move nor change number.
+int SplitFoldedPanels(const std::vector<Eigen::Vector3d>& start, ExtractedMesh* mesh);
+
 }  // namespace pqlayout

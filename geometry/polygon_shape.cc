@@ -43,4 +43,15 @@ std::vector<double> CornerTurns(const std::vector<Eigen::Vector3d>& position, co
   return turns;
 }
 
+bool FoldedSince(const std::vector<Eigen::Vector3d>& start, const std::vector<Eigen::Vector3d>& now,
+                 const std::vector<int>& polygon) {
+  const Eigen::Vector3d n = NewellNormal(start, polygon);
+  const auto turns_all = [&](const std::vector<Eigen::Vector3d>& p) {
+    for (const double t : CornerTurns(p, polygon, n))
+      if (!(t > 0.0)) return false;
+    return true;
+  };
+  return turns_all(start) && !turns_all(now);
+}
+
 }  // namespace pqlayout

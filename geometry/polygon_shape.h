@@ -27,4 +27,10 @@ double ShapeAngle(const std::vector<Eigen::Vector3d>& position, const std::vecto
 std::vector<double> CornerTurns(const std::vector<Eigen::Vector3d>& position, const std::vector<int>& polygon,
                                 const Eigen::Vector3d& normal);
 
+// Whether a polygon that turned the same way at every corner with its vertices at `start`
+// (round its Newell normal there) no longer does at `now`: a corner turned inside out, or
+// the polygon folded or flipped over.
+bool FoldedSince(const std::vector<Eigen::Vector3d>& start, const std::vector<Eigen::Vector3d>& now,
+                 const std::vector<int>& polygon);
+
 }  // namespace pqlayout

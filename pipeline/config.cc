@@ -245,12 +245,15 @@ KeyTable::KeyTable(Config* c) {
   Number("planarize.weights.anchor", &pw.anchor, NonNegative(kMaxWeight), "vertices stay near where the layout put them");
   Number("planarize.weights.edge_length", &pw.edge_length, NonNegative(kMaxWeight),
          "× the planarity weight: no edge shrinks below a quarter of its extracted length (or of h); 0: off");
+  Number("planarize.weights.orientation", &pw.orientation, NonNegative(kMaxWeight),
+         "× the first round's planarity weight: no triangle turns over from the way it was extracted; 0: off");
   Number("planarize.target_delta", &c->planarize.target_delta, Positive(1.0), "stop when max planarity δ ≤ target_delta");
   Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (planarity weight raised after each)");
   Number("planarize.close_edges", &c->planarize.close_edges, NonNegative(1.0),
          "edges that planarisation shortens below close_edges × h are closed (their ends one vertex: a quad "
-         "becomes the triangle it has turned into) and the mesh planarised again, up to 5 passes; planar quads "
-         "with a reflex corner are then cut into two triangles (0: neither)");
+         "becomes the triangle it has turned into), panels it folded are cut into triangles, and the mesh "
+         "planarised again, up to 8 passes; planar quads with a reflex corner are then cut into two triangles "
+         "(0: none of it)");
 
   auto& st = c->stiffen;
   Number("stiffen.tolerance", &st.tolerance, NonNegative(kMaxLength),

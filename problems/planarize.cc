@@ -20,6 +20,7 @@
 #include "problems/residuals/fairness_residual.h"
 #include "problems/residuals/planarity_residual.h"
 #include "problems/residuals/surface_chart_manifold.h"
+#include "problems/residuals/triangle_orientation_residual.h"
 
 namespace pqlayout {
 
@@ -55,13 +56,7 @@ void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>
   for (const auto f : mesh.faces()) {
     std::vector<int> ids;
     for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx());
-    const Eigen::Vector3d n = NewellNormal(start, ids);
-    const auto turns_all = [&](const std::vector<Eigen::Vector3d>& p) {
-      for (const double t : CornerTurns(p, ids, n))
-        if (!(t > 0.0)) return false;
-      return true;
-    };
-    if (!turns_all(start) || turns_all(now)) continue;
+    if (!FoldedSince(start, now, ids)) continue;
     ++report->folded_faces;
     if (report->folded_at.size() < 10) {
       Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -77,7 +72,7 @@ nlohmann::json PlanarizeReport::ToJson() const {
           {"boundary_deviation", boundary_deviation}, {"max_displacement", max_displacement},
           {"edge_length_min", edge_length_min}, {"edges_below_min_edge", edges_below_min_edge},
           {"folded_faces", folded_faces}, {"folded_at", folded_at},
-          {"closed_edges", closed_edges}, {"passes", passes}, {"darts_cut", darts_cut},
+          {"closed_edges", closed_edges}, {"passes", passes}, {"darts_cut", darts_cut}, {"folded_split", folded_split},
           {"n_faces", n_faces}, {"quad_fraction", quad_fraction},
           {"max_displacement_edges", max_displacement_edges}, {"rounds", rounds},
           {"iterations", iterations},         {"ceres", ceres}};
@@ -95,6 +90,9 @@ constexpr double kPlanarityRaise = 30.0, kClosenessRaise = 3.0;
 // but closeness max rises from 7–11 mm to 57 mm (strain) and 0.24 m (curvature) at weight
 // 1e-4 (README, planarisation).
 constexpr double kEdgeFraction = 0.25;
+// TriangleOrientationResidual's κ: a triangle keeps a quarter of the area it had where the
+// layout put it (the edge hinge's fraction).
+constexpr double kAreaFraction = 0.0;
 constexpr int kIterationsPerRound = 10;
 // A round ends at the first iterate with δ max ≤ kEarlyDelta × target and every vertex within
 // kEarlyCloseness × h of the reference (half the ≤ 0.02 h of issue 6): the margin keeps the
@@ -173,9 +171,16 @@ struct PlanarizeData {
   std::vector<double> mean_diagonal;
   std::vector<std::array<int, 3>> triples;
   std::vector<std::tuple<int, int, double>> edges;
+  struct Triangle {
+    std::array<int, 3> v;
+    Eigen::Vector3d normal;  // n₀ and A₀ of TriangleOrientationResidual, at the shape reference
+    double area;
+  };
+  std::vector<Triangle> triangles;
 };
 
-PlanarizeData PrepareData(const ExtractedMesh& extracted, const ClosestPointQuery& query, double h) {
+PlanarizeData PrepareData(const ExtractedMesh& extracted, const ClosestPointQuery& query, double h,
+                          const std::vector<Eigen::Vector3d>* shape_reference) {
   const PolyMesh& mesh = extracted.mesh;
   const int nv = static_cast<int>(mesh.n_vertices());
   PlanarizeData d;
@@ -199,6 +204,12 @@ PlanarizeData PrepareData(const ExtractedMesh& extracted, const ClosestPointQuer
     d.mean_diagonal.push_back(plane.mean_diagonal);
   }
   d.triples = PolylineTriples(mesh);
+  const std::vector<Eigen::Vector3d>& reference = shape_reference != nullptr ? *shape_reference : d.start;
+  for (const auto& face : d.faces) {
+    if (face.size() != 3) continue;
+    const Eigen::Vector3d twice = (reference[face[1]] - reference[face[0]]).cross(reference[face[2]] - reference[face[0]]);
+    if (twice.norm() > 0.0) d.triangles.push_back({{face[0], face[1], face[2]}, twice.normalized(), 0.5 * twice.norm()});
+  }
   for (const auto e : mesh.edges()) {
     const auto he = mesh.halfedge_handle(e, 0);
     const int a = mesh.from_vertex_handle(he).idx(), b = mesh.to_vertex_handle(he).idx();
@@ -252,6 +263,11 @@ void SolveRound(const ExtractedMesh& extracted, const ClosestPointQuery& query, 
     for (const auto& [a, b, min_length] : d->edges)
       problem.AddResidualBlock(EdgeLengthResidual::Create(min_length, w.edge_length * rw.planarity, h),
                                nullptr, &position[3 * a], &position[3 * b]);
+  if (w.orientation > 0.0)
+    for (const auto& t : d->triangles)
+      problem.AddResidualBlock(
+          TriangleOrientationResidual::Create(t.normal, t.area, kAreaFraction, w.orientation * kPlanarityStart), nullptr,
+          &position[3 * t.v[0]], &position[3 * t.v[1]], &position[3 * t.v[2]]);
   if (fairness_weight > 0.0)
     for (const auto& t : d->triples)
       problem.AddResidualBlock(FairnessResidual::Create(fairness_weight, h), nullptr, &position[3 * t[0]],
@@ -298,10 +314,10 @@ void MeasureDisplacement(const PolyMesh& mesh, const std::vector<Eigen::Vector3d
 }  // namespace
 
 Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double h, ExtractedMesh* extracted,
-                     PlanarizeReport* report) {
+                     PlanarizeReport* report, const std::vector<Eigen::Vector3d>* shape_reference) {
   PolyMesh& mesh = extracted->mesh;
   const ClosestPointQuery& query = reference.closest_points();
-  PlanarizeData data = PrepareData(*extracted, query, h);
+  PlanarizeData data = PrepareData(*extracted, query, h, shape_reference);
   const auto& w = options.weights;
   // Weights (config values scale these): the residuals are all dimensionless (δ, metres / h),
   // so the same numbers work at every spacing h.

@@ -49,7 +49,8 @@ struct PlanarizeReport {
   nlohmann::json folded_at = nlohmann::json::array();  // centroids of the first 10 of them
   int closed_edges = 0;                              // edges closed between passes (stage_planarize.cc)
   int passes = 1;                                    // planarisations run
-  int darts_cut = 0;                                 // planar quads with a reflex corner cut in two triangles
+  int darts_cut = 0;
+  int folded_split = 0;                              // folded panels cut into triangles between passes                                 // planar quads with a reflex corner cut in two triangles
   int n_faces = 0;                                   // of the planarised mesh (after the repair)
   double quad_fraction = 0.0;                        // ... and its share of quads
   int rounds = 0;
@@ -60,8 +61,11 @@ struct PlanarizeReport {
 
 // Planarises mesh in place (its origin flags: on_boundary, corner). The panel-shape metrics
 // are left to MeasurePanelShapes.
+// shape_reference: per vertex, where the layout put it (the triangles' orientation residual
+// holds them the way round they were there); nullptr: the mesh as given.
 Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& options, double spacing,
-                     ExtractedMesh* mesh, PlanarizeReport* report);
+                     ExtractedMesh* mesh, PlanarizeReport* report,
+                     const std::vector<Eigen::Vector3d>* shape_reference = nullptr);
 
 // The panel-shape metrics of `report` (edge_length_min, edges_below_min_edge, folded_faces,
 // folded_at, n_faces, quad_fraction) of `mesh` against its vertex positions `start` (the

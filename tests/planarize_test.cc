@@ -17,6 +17,7 @@
 #include "problems/planarize.h"
 #include "problems/residuals/anchor_residual.h"
 #include "problems/residuals/edge_length_residual.h"
+#include "problems/residuals/triangle_orientation_residual.h"
 #include "problems/residuals/boundary_residual.h"
 #include "problems/residuals/closeness_residual.h"
 #include "problems/residuals/fairness_residual.h"
@@ -92,7 +93,31 @@ TEST(PlanarizeResiduals, GradientCheckAtRandomPoints) {
     std::vector<double> b = a;
     for (int k = 0; k < 3; ++k) b[k] += Uniform(-0.5, 0.5);
     Check("edge_length", EdgeLengthResidual::Create(2.0, 2.0, 3.0), {a, b});
+    // The orientation hinge where it is active: κ = 2 of A₀ = 1 is more than any of these
+    // triangles' signed areas (their corners within a unit cube).
+    Check("triangle_orientation",
+          TriangleOrientationResidual::Create(Eigen::Vector3d::Random().normalized(), 1.0, 2.0, 3.0),
+          {RandomBlock(3), RandomBlock(3), RandomBlock(3)});
   }
+}
+
+// The orientation hinge is zero while the triangle keeps κ of its area A₀ round n₀ and grows
+// linearly below, through zero area to turned over: r = √w (κ − n₀·(e₁ × e₂) / (2 A₀)).
+TEST(PlanarizeResiduals, TriangleOrientationHingeValues) {
+  std::unique_ptr<ceres::CostFunction> cost(
+      TriangleOrientationResidual::Create(Eigen::Vector3d::UnitZ(), 0.5, 0.25, 4.0));
+  const auto residual = [&](double apex_y) {  // the unit right triangle with its apex at (0, y)
+    const double p0[3] = {1.0, 2.0, 3.0}, p1[3] = {2.0, 2.0, 3.0}, p2[3] = {1.0, 2.0 + apex_y, 3.0};
+    const double* blocks[3] = {p0, p1, p2};
+    double r = -1.0;
+    EXPECT_TRUE(cost->Evaluate(blocks, &r, nullptr));
+    return r;
+  };
+  EXPECT_EQ(residual(1.0), 0.0);                    // as it was
+  EXPECT_EQ(residual(0.3), 0.0);                    // 0.3 of its area: above κ
+  EXPECT_NEAR(residual(0.1), 2.0 * 0.15, 1e-15);    // 0.1 of it: √w (κ − 0.1)
+  EXPECT_NEAR(residual(0.0), 2.0 * 0.25, 1e-15);    // flat
+  EXPECT_NEAR(residual(-1.0), 2.0 * 1.25, 1e-15);   // turned over
 }
 
 // The hinge is zero while the edge is at least ℓ_min long and grows linearly below it:
@@ -304,6 +329,25 @@ TEST(PanelRepair, ADartIsCutIntoItsTwoTriangles) {
   EXPECT_EQ(CutDarts(&bowtie), 0);
   ExtractedMesh convex = QuadGrid(2, 1, 1.0, [](double, double) { return 0.0; });
   EXPECT_EQ(CutDarts(&convex), 0);
+}
+
+// SplitFoldedPanels: in a 2 × 1 grid whose middle column's two vertices swapped (both quads
+// bow-ties), each quad becomes the two triangles of a diagonal, vertices unchanged; the grid
+// as extracted and a quad with a short edge but every corner still convex are left alone.
+TEST(PanelRepair, AFoldedQuadIsCutIntoTriangles) {
+  ExtractedMesh grid = QuadGrid(2, 1, 1.0, [](double, double) { return 0.0; });
+  std::vector<Eigen::Vector3d> start;
+  for (const auto v : grid.mesh.vertices()) start.push_back(ToEigen(grid.mesh.point(v)));
+  EXPECT_EQ(SplitFoldedPanels(start, &grid), 0);
+  grid.mesh.set_point(VertexHandle(2), {1.05, 0.0, 0.0});  // (2, 0) slid next to (1, 0): convex still
+  EXPECT_EQ(SplitFoldedPanels(start, &grid), 0);
+  grid.mesh.set_point(VertexHandle(2), ToOpenMesh(start[2]));
+  grid.mesh.set_point(VertexHandle(1), {1.0, 1.0, 0.0});  // the middle column swapped
+  grid.mesh.set_point(VertexHandle(4), {1.0, 0.0, 0.0});
+  EXPECT_EQ(SplitFoldedPanels(start, &grid), 2);
+  EXPECT_EQ(FaceSides(grid.mesh), (std::map<int, int>{{3, 4}}));
+  EXPECT_EQ(grid.mesh.n_vertices(), 6u);
+  EXPECT_EQ(grid.stats.rejected_faces, 0);
 }
 
 TEST(Planarize, NoisyPlanarGridReturnsToItsPlane) {
