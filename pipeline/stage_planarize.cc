@@ -4,6 +4,7 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <string>
 
 #include "geometry/panel_repair.h"
 #include "geometry/mesh_io.h"
@@ -23,6 +24,24 @@ Status WriteShellMesh(const PolyMesh& shell, double target_delta, OutputFiles* o
     mesh.set_color(f, OpenMesh::Vec3uc(static_cast<unsigned char>(255 * t), 64, static_cast<unsigned char>(255 * (1 - t))));
   }
   return WriteMesh(mesh, out->Path(name + ".ply"));
+}
+
+// The planarity figure's title: what the panels are, and how many planarisation folded.
+std::string PlanarityTitle(const PolyMesh& mesh, const PlanarizeReport& report) {
+  int quads = 0, triangles = 0;
+  for (const auto f : mesh.faces()) {
+    quads += mesh.valence(f) == 4;
+    triangles += mesh.valence(f) == 3;
+  }
+  const int other = static_cast<int>(mesh.n_faces()) - quads - triangles;
+  const auto count = [](int n, const std::string& one, const std::string& many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  std::string title = "Planarity δ after planarisation: " + count(quads, "quad", "quads") + ", " +
+                      count(triangles, "triangle", "triangles");
+  if (other > 0) title += ", " + count(other, "larger panel", "larger panels");
+  title += report.folded_faces == 0 ? ", none folded" : ", " + std::to_string(report.folded_faces) + " folded";
+  return title;
 }
 
 // Planarisation passes: after each, the edges it closed (shorter than planarize.close_edges × h)
@@ -83,7 +102,7 @@ Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json*
   const double target = state->config.planarize.target_delta;
   PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads_planarized"));
   PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads"));  // the final mesh until stiffen replaces it
-  PQ_RETURN_IF_ERROR(WritePlanarityFigure(*state->surface, mesh, target, "Planarity δ after planarisation",
+  PQ_RETURN_IF_ERROR(WritePlanarityFigure(*state->surface, mesh, target, PlanarityTitle(mesh, report),
                                           out->Path("figures/planarity.svg")));
   return WriteShell3dFigure(*state->surface, mesh, target, "The grid shell, seen from the south-west",
                             out->Path("figures/shell_3d.svg"));

@@ -4,6 +4,10 @@
 // roof meshed at 1.6 m, where the level sets need the floor rounds.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -82,6 +86,19 @@ TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
   EXPECT_GE(s["extract"]["split_boundary_polygons"].get<int>(), 2);
   EXPECT_TRUE(s["extract"]["interior_non_quads"].empty()) << s["extract"]["interior_non_quads"];
   EXPECT_EQ(s["extract"]["n_corner_vertices"].get<int>(), 4);
+  // The planarity figure says what was built: its title counts the planarised mesh's quads
+  // (quad_fraction × n_faces) and the panels still folded (GreatCourtStages's directory).
+  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();  // TempDir() would wipe it
+  std::ifstream svg(std::filesystem::temp_directory_path() /
+                    ("pqlayout_test_" + std::string(test->test_suite_name()) + "_" + test->name()) /
+                    "strain1/figures/planarity.svg");
+  ASSERT_TRUE(svg.good());
+  const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  const auto& p = s["planarize"];
+  const int quads = static_cast<int>(std::lround(p["quad_fraction"].get<double>() * p["n_faces"].get<int>()));
+  EXPECT_NE(text.find("Planarity δ after planarisation: " + std::to_string(quads) + " quads, "), std::string::npos);
+  const int folded = p["folded_faces"].get<int>();
+  EXPECT_NE(text.find(folded == 0 ? ", none folded" : ", " + std::to_string(folded) + " folded"), std::string::npos);
 }
 
 // Curvature guidance (the paper's reference layout, Fig. 8b): with seams from the four
