@@ -34,6 +34,22 @@ std::vector<double> FacePlanarity(const PolyMesh& mesh) {
   return delta;
 }
 
+namespace {
+
+// How far the vertices moved from the extracted mesh: in metres and in its mean edge lengths.
+void MeasureDisplacement(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start, PlanarizeReport* report) {
+  for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v)
+    report->max_displacement = std::max(report->max_displacement, (ToEigen(mesh.point(VertexHandle(v))) - start[v]).norm());
+  double edge_sum = 0.0;
+  for (const auto e : mesh.edges()) {
+    const auto he = mesh.halfedge_handle(e, 0);
+    edge_sum += (start[mesh.to_vertex_handle(he).idx()] - start[mesh.from_vertex_handle(he).idx()]).norm();
+  }
+  if (edge_sum > 0.0) report->max_displacement_edges = report->max_displacement / (edge_sum / mesh.n_edges());
+}
+
+}  // namespace
+
 void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start, double spacing,
                         double min_edge, PlanarizeReport* report) {
   std::vector<Eigen::Vector3d> now(mesh.n_vertices());
@@ -47,6 +63,8 @@ void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>
     report->edges_below_min_edge += length < min_edge;
   }
   if (mesh.n_edges() == 0) report->edge_length_min = 0.0;
+  report->max_displacement = report->max_displacement_edges = 0.0;
+  MeasureDisplacement(mesh, start, report);
   report->folded_faces = 0;
   report->folded_at = nlohmann::json::array();
   report->n_faces = static_cast<int>(mesh.n_faces());
@@ -299,17 +317,6 @@ void SetPoints(const std::vector<double>& position, PolyMesh* mesh) {
     mesh->set_point(VertexHandle(v), {position[3 * v], position[3 * v + 1], position[3 * v + 2]});
 }
 
-// How far the vertices moved from the extracted mesh: in metres and in its mean edge lengths.
-void MeasureDisplacement(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start, PlanarizeReport* report) {
-  for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v)
-    report->max_displacement = std::max(report->max_displacement, (ToEigen(mesh.point(VertexHandle(v))) - start[v]).norm());
-  double edge_sum = 0.0;
-  for (const auto e : mesh.edges()) {
-    const auto he = mesh.halfedge_handle(e, 0);
-    edge_sum += (start[mesh.to_vertex_handle(he).idx()] - start[mesh.from_vertex_handle(he).idx()]).norm();
-  }
-  if (edge_sum > 0.0) report->max_displacement_edges = report->max_displacement / (edge_sum / mesh.n_edges());
-}
 
 }  // namespace
 

@@ -68,8 +68,8 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
                      const std::vector<Eigen::Vector3d>* shape_reference = nullptr);
 
 // The panel-shape metrics of `report` (edge_length_min, edges_below_min_edge, folded_faces,
-// folded_at, n_faces, quad_fraction) of `mesh` against its vertex positions `start` (the
-// extracted mesh): a face is folded if every corner turned the same way round its extracted
+// folded_at, n_faces, quad_fraction, and max_displacement(_edges) over all passes) of `mesh`
+// against its vertex positions `start` (the extracted mesh): a face is folded if every corner turned the same way round its extracted
 // polygon's normal there and one no longer does.
 void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start, double spacing,
                         double min_edge, PlanarizeReport* report);

@@ -248,7 +248,8 @@ ExtractedMesh QuadGrid(int nx, int ny, double cell, Height height) {
 }
 
 // Panel shapes after planarisation (MeasurePanelShapes): a 2 × 1 grid of unit quads. With the
-// middle column's two vertices swapped both quads fold into bow-ties (2 folded faces); with
+// middle column's two vertices swapped both quads fold into bow-ties (2 folded faces, each of
+// the two moved by 1); with
 // the right quad squeezed to a bottom edge of 0.05 it stays convex (none folded), the
 // shortest edge is 0.05 and it is counted below min_edge = 0.2; the grid as extracted has neither.
 TEST(PanelShapes, AFoldedQuadAndAShortEdgeAreCounted) {
@@ -258,6 +259,7 @@ TEST(PanelShapes, AFoldedQuadAndAShortEdgeAreCounted) {
   PlanarizeReport same;
   MeasurePanelShapes(grid.mesh, start, 1.0, 0.2, &same);
   EXPECT_EQ(same.folded_faces, 0);
+  EXPECT_EQ(same.max_displacement, 0.0);
   EXPECT_EQ(same.edges_below_min_edge, 0);
   EXPECT_DOUBLE_EQ(same.edge_length_min, 1.0);
   const auto at = [&](double x, double y) -> VertexHandle {
@@ -273,6 +275,8 @@ TEST(PanelShapes, AFoldedQuadAndAShortEdgeAreCounted) {
   MeasurePanelShapes(grid.mesh, start, 1.0, 0.2, &folded);
   EXPECT_EQ(folded.folded_faces, 2);
   EXPECT_EQ(folded.folded_at.size(), 2u);
+  EXPECT_DOUBLE_EQ(folded.max_displacement, 1.0);  // from `start`, whatever moved them
+  EXPECT_DOUBLE_EQ(folded.max_displacement_edges, 1.0);  // unit edges
   grid.mesh.set_point(a, {1.0, 0.0, 0.0});
   grid.mesh.set_point(b, {1.0, 1.0, 0.0});
   grid.mesh.set_point(c, {1.05, 0.0, 0.0});  // the right quad squeezed, still convex
