@@ -44,7 +44,7 @@ TARGETS = [
     ("planarity_max", "planarize: δ max", lambda v, h: v <= 1e-3, "≤ 1e-3"),
     ("closeness_h", "planarize: closeness max / h", lambda v, h: v <= 0.02, "≤ 0.02 h"),
 ]
-INFO = ["faces", "panels", "planarized_quads", "folded_panels", "planarized_edge_min_h", "compliance_ratio", "braced_quads", "bracing_ratio", "levelset_s", "extract_s", "planarize_s", "stiffen_s", "total_s"]
+INFO = ["faces", "panels", "planarized_quads", "folded_panels", "planarized_edge_min_h", "compliance_ratio", "compliance_J", "braced_quads", "bracing_ratio", "levelset_s", "extract_s", "planarize_s", "stiffen_s", "total_s"]
 
 
 def measure(report):
@@ -69,6 +69,7 @@ def measure(report):
         "folded_panels": pl.get("folded_faces"),
         "planarized_edge_min_h": pl.get("edge_length_min"),
         "compliance_ratio": s.get("stiffen", {}).get("compliance_ratio"),
+        "compliance_J": s.get("stiffen", {}).get("compliance_after"),
         "braced_quads": s.get("stiffen", {}).get("bracing", {}).get("braced_quads"),
         "bracing_ratio": s.get("stiffen", {}).get("bracing", {}).get("compliance_ratio"),
         "levelset_s": lv["seconds"], "extract_s": ex["seconds"], "planarize_s": pl["seconds"],
@@ -86,7 +87,7 @@ def fmt(value):
     if value is None:
         return "n/a"
     if isinstance(value, float):
-        return f"{value:.3g}" if abs(value) < 1e4 else f"{value:.0f}"
+        return f"{value:.3g}" if abs(value) < 1e3 else f"{value:.0f}"
     return str(value)
 
 
@@ -155,7 +156,7 @@ def write_markdown(rows, path, sets):
               "(planarize.close_edges: closed edges and darts make triangles), the panels convex when extracted "
               "that planarisation folded or "
               "turned a corner inside out, and its shortest edge / h (no target in issue 17; README, planarisation), "
-              "stiffen's compliance ratio (of the shell it stiffened), the quads "
+              "stiffen's compliance ratio (of the shell it stiffened) and its compliance after, J (the whole roof's self-weight on the frame; compare runs of one roof only), the quads "
               "on free edges cut into triangles and the compliance after stiffen with them over without "
               "(extract.brace_free_edges = paying), seconds of level sets, "
               "extraction, planarisation, stiffen and the whole run", ""]
