@@ -42,6 +42,10 @@ struct FigureOptions {
   double grid_cell_px = 2.0;            // grid square size (px of a 1000 px drawing)
   double streamline_spacing_px = 16.0;  // distance between integral curves (px of 1000 px)
   double min_crossing_deg = 0.0;        // level-set figure: faces crossing below this filled (0: none)
+  // Planarity figure: faces (indices) circled by a thick outline with a legend entry
+  // `marked_label`, e.g. the panels planarisation folded (none: no outline, no entry).
+  std::vector<int> marked_faces;
+  std::string marked_label;
 };
 
 // Paper Fig. 3: top view, v_z per vertex (metres) as a smooth colour map (always resampled
@@ -150,8 +154,9 @@ struct PlanarityScale {
 // Paper Fig. 8/13: top view of the quad mesh, each face filled with its planarity δ
 // (geometry/planarity.h) on PlanarityScale{target_delta}, edges as thin dark lines
 // (MeshLineWidth), reference outline, log colour bar "planarity δ" with the target marked,
-// legend with the number of faces meeting the target and δ max, scale bar, north arrow.
-// InvalidInput if target_delta is not a positive number or the mesh has no faces.
+// legend with the number of faces meeting the target and δ max, scale bar, north arrow;
+// options.marked_faces outlined (FigureOptions). InvalidInput if target_delta is not a
+// positive number, the mesh has no faces or a marked face is not one of its faces.
 Status WritePlanarityFigure(const SurfaceModel& surface, const PolyMesh& mesh, double target_delta,
                             const std::string& title, const std::string& path,
                             const FigureOptions& options = {});

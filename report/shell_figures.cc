@@ -92,6 +92,11 @@ Status CheckPlanarityInput(const PolyMesh& mesh, double target_delta, const std:
   return Status::Ok();
 }
 
+// WritePlanarityFigure's marked faces: a thick outline in a colour off the blue–white–red map.
+const Rgb kMarkColour{230, 160, 0};
+constexpr double kMarkWidth = 3.0;
+constexpr double kMarkRing = 16.0;  // ring radius, px of the reference width
+
 // Log colour bar with the target marked, and the legend: faces meeting the target, δ max.
 void DrawPlanarityKey(const PlanarityScale& scale, const std::vector<double>& delta,
                       SvgCanvas* canvas) {
@@ -184,8 +189,26 @@ Status WritePlanarityFigure(const SurfaceModel& surface, const PolyMesh& mesh, d
   for (const auto f : mesh.faces())
     canvas.Polygon(TopView(FacePoints(mesh, f)), scale.Colour(delta[f.idx()]));
   DrawMembers(mesh, &canvas);
+  std::vector<std::vector<Vector2d>> marked;  // each face's outline and a ring round it, seen at any size
+  const double ring = kMarkRing * canvas.unit() / canvas.px_per_metre();
+  for (const int f : options.marked_faces) {
+    if (f < 0 || f >= static_cast<int>(mesh.n_faces()))
+      return Status::InvalidInput(path + ": marked face " + std::to_string(f) + " is not a face of the mesh");
+    marked.push_back(TopView(FacePoints(mesh, FaceHandle(f))));
+    Vector2d centre = Vector2d::Zero();
+    for (const auto& p : marked.back()) centre += p / static_cast<double>(marked.back().size());
+    std::vector<Vector2d> circle;
+    for (int k = 0; k < 48; ++k)
+      circle.push_back(centre + ring * Vector2d(std::cos(k * M_PI / 24.0), std::sin(k * M_PI / 24.0)));
+    marked.push_back(std::move(circle));
+  }
+  const Stroke mark{kMarkColour, kMarkWidth};
+  if (!marked.empty()) canvas.Polylines(marked, mark, true);
   DrawOutlineScaleAndNorth(surface, &canvas);
   DrawPlanarityKey(scale, delta, &canvas);
+  if (!marked.empty())
+    canvas.Legend({{kMarkColour.Hex(),
+                    std::to_string(options.marked_faces.size()) + " " + options.marked_label + " (outlined, ringed)"}});
   return canvas.Write(path);
 }
 

@@ -108,6 +108,21 @@ TEST(PlanarityFigure, FacesInTheirScaleColourAndTheTargetMarked) {
   EXPECT_FALSE(WritePlanarityFigure(surface, mesh, 0.0, "bad", path + ".bad").ok());
   EXPECT_FALSE(WritePlanarityFigure(surface, PolyMesh(), 1e-3, "bad", path + ".bad").ok());
   EXPECT_FALSE(std::filesystem::exists(path + ".bad"));
+  EXPECT_EQ(svg.find("folded"), std::string::npos);  // nothing marked: no outline, no entry
+
+  // Marked faces (the panels planarisation folded): outlined and ringed in one stroked path in
+  // the mark colour, counted in a legend row; a face the mesh does not have is refused.
+  FigureOptions marked;
+  marked.marked_faces = {1};
+  marked.marked_label = "panel folded by planarisation";
+  ASSERT_TRUE(WritePlanarityFigure(surface, mesh, 1e-3, "Planarity", path, marked).ok());
+  const std::string with = ReadText(path);
+  EXPECT_NE(with.find("1 panel folded by planarisation (outlined, ringed)"), std::string::npos);
+  EXPECT_EQ(Count(with, "stroke=\"#e6a000\""), 1);  // the outline and the ring, one path
+  EXPECT_EQ(Count(with, "fill=\"#e6a000\""), 1);    // the legend swatch
+  marked.marked_faces = {2};
+  EXPECT_FALSE(WritePlanarityFigure(surface, mesh, 1e-3, "bad", path + ".bad", marked).ok());
+  EXPECT_FALSE(std::filesystem::exists(path + ".bad"));
 }
 
 // Two horizontal squares above each other: seen from above, the upper one is nearer and
