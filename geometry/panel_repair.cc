@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
 #include <set>
 #include <utility>
 
@@ -14,6 +15,48 @@ namespace pqlayout {
 // At most this many rounds of CollapseRound (each closes edges on disjoint neighbourhoods).
 constexpr int kMaxRounds = 10;
 
+namespace {
+
+// A chord (an interior edge between two vertices on the reference boundary) that
+// planarisation shortened below min_length cuts off an ear: the triangle on its far side,
+// whose two other edges are on the mesh boundary. The collapse rules refuse the chord (it
+// would pinch the mesh), so the ear is dropped first — a sliver of roof at most min_length
+// wide — and the chord, now on the boundary, closes like any boundary edge. Not when the
+// ear's tip is a corner of the reference. Counted as closed edges.
+int DropEarsOfShortChords(double min_length, extraction_internal::Polygons* m) {
+  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
+  for (size_t f = 0; f < m->faces.size(); ++f)
+    for (size_t k = 0; k < m->faces[f].size(); ++k) {
+      const int a = m->faces[f][k], b = m->faces[f][(k + 1) % m->faces[f].size()];
+      edge_faces[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
+    }
+  const auto on_mesh_boundary = [&](int a, int b) { return edge_faces[{std::min(a, b), std::max(a, b)}].size() == 1; };
+  std::vector<char> drop(m->faces.size(), 0);
+  int dropped = 0;
+  for (const auto& [e, faces] : edge_faces) {
+    const auto [u, v] = e;
+    if (faces.size() != 2 || !m->origin[u].on_boundary || !m->origin[v].on_boundary ||
+        (m->position[u] - m->position[v]).norm() >= min_length)
+      continue;
+    for (const int f : faces) {
+      const auto& t = m->faces[f];
+      if (t.size() != 3 || drop[f]) continue;
+      const int w = t[0] != u && t[0] != v ? t[0] : (t[1] != u && t[1] != v ? t[1] : t[2]);
+      if (m->origin[w].corner || !on_mesh_boundary(u, w) || !on_mesh_boundary(w, v)) continue;
+      drop[f] = 1, ++dropped;
+      break;
+    }
+  }
+  if (dropped == 0) return 0;
+  std::vector<std::vector<int>> kept;
+  for (size_t f = 0; f < m->faces.size(); ++f)
+    if (!drop[f]) kept.push_back(std::move(m->faces[f]));
+  m->faces = std::move(kept);
+  return dropped;
+}
+
+}  // namespace
+
 int CloseShortEdges(double min_length, ExtractedMesh* mesh, std::vector<Eigen::Vector3d>* start) {
   extraction_internal::Polygons now, then;
   for (const auto v : mesh->mesh.vertices()) now.position.push_back(ToEigen(mesh->mesh.point(v)));
@@ -23,7 +66,7 @@ int CloseShortEdges(double min_length, ExtractedMesh* mesh, std::vector<Eigen::V
     for (const auto v : mesh->mesh.fv_range(f)) face.push_back(v.idx());
     now.faces.push_back(std::move(face));
   }
-  int closed = 0;
+  int closed = DropEarsOfShortChords(min_length, &now);
   for (int round = 0; round < kMaxRounds; ++round) {
     const int n = extraction_internal::CollapseRound(min_length, &now);
     if (n == 0) break;

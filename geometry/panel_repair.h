@@ -5,7 +5,9 @@
 // by the extraction's collapse rules (geometry/quad_cleanup.h, CollapseRound: a corner or
 // boundary vertex keeps its place, no collapse that would pinch the mesh, disjoint
 // neighbourhoods per round), so the quad is the triangle it has become, a pentagon a quad,
-// and two vertices that slid past each other are one again. The caller planarises again.
+// and two vertices that slid past each other are one again; a chord between two boundary
+// vertices that the rules refuse loses the ear on its far side first (panel_repair.cc,
+// DropEarsOfShortChords). The caller planarises again.
 // CutDarts: a planar quad with one reflex corner (a dart: δ, which measures the distance
 // between the diagonals' lines, cannot see it) is cut along the diagonal from that corner
 // into the two convex triangles it is made of; the vertices do not move, so nothing needs

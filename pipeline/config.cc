@@ -246,7 +246,7 @@ KeyTable::KeyTable(Config* c) {
   Number("planarize.weights.edge_length", &pw.edge_length, NonNegative(kMaxWeight),
          "× the planarity weight: no edge shrinks below a quarter of its extracted length (or of h); 0: off");
   Number("planarize.weights.orientation", &pw.orientation, NonNegative(kMaxWeight),
-         "× the first round's planarity weight: no triangle turns over from the way it was extracted; 0: off");
+         "× the first round's planarity weight: no triangle turns over or flattens below 5 % of its extracted area; 0: off");
   Number("planarize.target_delta", &c->planarize.target_delta, Positive(1.0), "stop when max planarity δ ≤ target_delta");
   Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (planarity weight raised after each)");
   Number("planarize.close_edges", &c->planarize.close_edges, NonNegative(1.0),

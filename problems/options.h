@@ -115,7 +115,7 @@ struct PlanarizeWeights {
   double fairness = 0.01;   // second differences along the mesh polylines
   double anchor = 1.0;      // vertices stay near where the layout put them
   double edge_length = 0.0; // × planarity weight: no edge below ¼ of its extracted length (of h); 0: off
-  double orientation = 1.0; // × the first round's planarity weight: no triangle turns over; 0: off
+  double orientation = 1.0; // × the first round's planarity weight: no triangle turns over or flattens (< 5 % of its area); 0: off
 };
 
 struct PlanarizeOptions {

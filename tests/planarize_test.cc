@@ -315,6 +315,37 @@ TEST(PanelRepair, AClosedEdgeMakesTheQuadTheTriangleItIs) {
   }
 }
 
+// CloseShortEdges on a chord: a quad on a 0.01-long interior edge between two boundary
+// vertices, whose far side is an ear (a needle triangle, 0.2 long, with its other two edges on
+// the boundary).
+// The collapse rules refuse the chord, so the ear is dropped and the chord, now a boundary
+// edge, closed: one triangle left. With the ear's tip a corner of the reference nothing is
+// closed.
+TEST(PanelRepair, AShortChordDropsItsEarAndCloses) {
+  const auto build = [](bool tip_is_corner) {
+    ExtractedMesh m;
+    const std::vector<Eigen::Vector3d> p = {{0, 0, 0}, {0.01, 0, 0}, {0.005, -0.2, 0}, {0.5, 1, 0}, {-0.5, 1, 0}};
+    int rejected = 0;
+    m.mesh = BuildPolyMesh(p, {{0, 2, 1}, {0, 1, 3, 4}}, &rejected);
+    m.origin.resize(5);
+    for (auto& o : m.origin) o.on_boundary = true;
+    m.origin[2].corner = tip_is_corner;
+    return m;
+  };
+  ExtractedMesh ear = build(false);
+  std::vector<Eigen::Vector3d> start;
+  for (const auto v : ear.mesh.vertices()) start.push_back(ToEigen(ear.mesh.point(v)));
+  EXPECT_EQ(CloseShortEdges(0.05, &ear, &start), 2);  // the ear, then the chord
+  EXPECT_EQ(FaceSides(ear.mesh), (std::map<int, int>{{3, 1}}));
+  EXPECT_EQ(ear.mesh.n_vertices(), 3u);
+  EXPECT_EQ(start.size(), 3u);
+  ExtractedMesh corner = build(true);
+  std::vector<Eigen::Vector3d> carried = start;
+  carried.resize(5);
+  EXPECT_EQ(CloseShortEdges(0.05, &corner, &carried), 0);
+  EXPECT_EQ(FaceSides(corner.mesh), (std::map<int, int>{{3, 1}, {4, 1}}));
+}
+
 // CutDarts: a planar quad with one reflex corner becomes the two triangles on either side of
 // the diagonal from that corner (both convex); a convex quad and a bow-tie are left alone.
 TEST(PanelRepair, ADartIsCutIntoItsTwoTriangles) {
