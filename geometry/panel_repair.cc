@@ -17,6 +17,27 @@ constexpr int kMaxRounds = 10;
 
 namespace {
 
+// The mesh's vertex positions, and one face's vertex indices.
+std::vector<Eigen::Vector3d> Positions(const PolyMesh& mesh) {
+  std::vector<Eigen::Vector3d> position;
+  for (const auto v : mesh.vertices()) position.push_back(ToEigen(mesh.point(v)));
+  return position;
+}
+
+std::vector<int> FaceVertices(const PolyMesh& mesh, FaceHandle f) {
+  std::vector<int> face;
+  for (const auto v : mesh.fv_range(f)) face.push_back(v.idx());
+  return face;
+}
+
+// Replaces the mesh by `faces` over `position` (the vertices keep their numbers and origins).
+void Rebuild(const std::vector<Eigen::Vector3d>& position, const std::vector<std::vector<int>>& faces,
+             ExtractedMesh* mesh) {
+  int rejected = 0;
+  mesh->mesh = BuildPolyMesh(position, faces, &rejected);
+  mesh->stats.rejected_faces += rejected;
+}
+
 // A chord (an interior edge between two vertices on the reference boundary) that
 // planarisation shortened below min_length cuts off an ear: the triangle on its far side,
 // whose two other edges are on the mesh boundary. The collapse rules refuse the chord (it
@@ -59,13 +80,9 @@ int DropEarsOfShortChords(double min_length, extraction_internal::Polygons* m) {
 
 int CloseShortEdges(double min_length, ExtractedMesh* mesh, std::vector<Eigen::Vector3d>* start) {
   extraction_internal::Polygons now, then;
-  for (const auto v : mesh->mesh.vertices()) now.position.push_back(ToEigen(mesh->mesh.point(v)));
+  now.position = Positions(mesh->mesh);
   now.origin = mesh->origin;
-  for (const auto f : mesh->mesh.faces()) {
-    std::vector<int> face;
-    for (const auto v : mesh->mesh.fv_range(f)) face.push_back(v.idx());
-    now.faces.push_back(std::move(face));
-  }
+  for (const auto f : mesh->mesh.faces()) now.faces.push_back(FaceVertices(mesh->mesh, f));
   int closed = DropEarsOfShortChords(min_length, &now);
   for (int round = 0; round < kMaxRounds; ++round) {
     const int n = extraction_internal::CollapseRound(min_length, &now);
@@ -78,22 +95,18 @@ int CloseShortEdges(double min_length, ExtractedMesh* mesh, std::vector<Eigen::V
   then.faces = now.faces;
   extraction_internal::Compact(&now);  // the same renumbering for both: it follows the faces
   extraction_internal::Compact(&then);
-  int rejected = 0;
-  mesh->mesh = BuildPolyMesh(now.position, now.faces, &rejected);
+  Rebuild(now.position, now.faces, mesh);
   mesh->origin = std::move(now.origin);
-  mesh->stats.rejected_faces += rejected;
   *start = std::move(then.position);
   return closed;
 }
 
 int CutDarts(ExtractedMesh* mesh) {
-  std::vector<Eigen::Vector3d> position;
-  for (const auto v : mesh->mesh.vertices()) position.push_back(ToEigen(mesh->mesh.point(v)));
+  const std::vector<Eigen::Vector3d> position = Positions(mesh->mesh);
   std::vector<std::vector<int>> faces;
   int cut = 0;
   for (const auto f : mesh->mesh.faces()) {
-    std::vector<int> face;
-    for (const auto v : mesh->mesh.fv_range(f)) face.push_back(v.idx());
+    std::vector<int> face = FaceVertices(mesh->mesh, f);
     int reflex = -1, count = 0;
     if (face.size() == 4) {
       const std::vector<double> turns = CornerTurns(position, face, NewellNormal(position, face));
@@ -110,9 +123,7 @@ int CutDarts(ExtractedMesh* mesh) {
     ++cut;
   }
   if (cut == 0) return 0;
-  int rejected = 0;
-  mesh->mesh = BuildPolyMesh(position, faces, &rejected);
-  mesh->stats.rejected_faces += rejected;
+  Rebuild(position, faces, mesh);
   return cut;
 }
 
@@ -130,8 +141,7 @@ std::vector<std::vector<int>> Fan(const std::vector<int>& polygon, size_t k) {
 }  // namespace
 
 int SplitFoldedPanels(const std::vector<Eigen::Vector3d>& start, ExtractedMesh* mesh) {
-  std::vector<Eigen::Vector3d> now;
-  for (const auto v : mesh->mesh.vertices()) now.push_back(ToEigen(mesh->mesh.point(v)));
+  const std::vector<Eigen::Vector3d> now = Positions(mesh->mesh);
   std::set<std::pair<int, int>> edges;  // a diagonal that is an edge already would pinch the mesh
   for (const auto e : mesh->mesh.edges()) {
     const auto he = mesh->mesh.halfedge_handle(e, 0);
@@ -141,8 +151,7 @@ int SplitFoldedPanels(const std::vector<Eigen::Vector3d>& start, ExtractedMesh* 
   std::vector<std::vector<int>> faces;
   int split = 0;
   for (const auto f : mesh->mesh.faces()) {
-    std::vector<int> face;
-    for (const auto v : mesh->mesh.fv_range(f)) face.push_back(v.idx());
+    std::vector<int> face = FaceVertices(mesh->mesh, f);
     if (face.size() < 4 || !FoldedSince(start, now, face)) {
       faces.push_back(std::move(face));
       continue;
@@ -169,9 +178,7 @@ int SplitFoldedPanels(const std::vector<Eigen::Vector3d>& start, ExtractedMesh* 
     ++split;
   }
   if (split == 0) return 0;
-  int rejected = 0;
-  mesh->mesh = BuildPolyMesh(now, faces, &rejected);
-  mesh->stats.rejected_faces += rejected;
+  Rebuild(now, faces, mesh);
   return split;
 }
 

@@ -8,7 +8,6 @@
 
 #include "geometry/panel_repair.h"
 #include "geometry/mesh_io.h"
-#include "geometry/polygon_shape.h"
 #include "pipeline/stages.h"
 #include "problems/planarize.h"
 #include "report/figures.h"
@@ -43,19 +42,6 @@ std::string PlanarityTitle(const PolyMesh& mesh, const PlanarizeReport& report) 
   if (other > 0) title += ", " + count(other, "larger panel", "larger panels");
   title += report.folded_faces == 0 ? ", none folded" : ", " + std::to_string(report.folded_faces) + " folded";
   return title;
-}
-
-// The faces that were convex at `start` and are folded now (MeasurePanelShapes counts them).
-std::vector<int> FoldedFaces(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>& start) {
-  std::vector<Eigen::Vector3d> now;
-  for (const auto v : mesh.vertices()) now.push_back(ToEigen(mesh.point(v)));
-  std::vector<int> folded;
-  for (const auto f : mesh.faces()) {
-    std::vector<int> ids;
-    for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx());
-    if (FoldedSince(start, now, ids)) folded.push_back(f.idx());
-  }
-  return folded;
 }
 
 // Planarisation passes: after each, the edges it closed (shorter than planarize.close_edges × h)
@@ -117,7 +103,7 @@ Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json*
   PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads_planarized"));
   PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads"));  // the final mesh until stiffen replaces it
   FigureOptions figure;
-  figure.marked_faces = FoldedFaces(mesh, start);
+  figure.marked_faces = report.folded_face_ids;
   figure.marked_label = figure.marked_faces.size() == 1 ? "panel folded by planarisation" : "panels folded by planarisation";
   PQ_RETURN_IF_ERROR(WritePlanarityFigure(*state->surface, mesh, target, PlanarityTitle(mesh, report),
                                           out->Path("figures/planarity.svg"), figure));

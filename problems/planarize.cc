@@ -67,6 +67,7 @@ void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>
   MeasureDisplacement(mesh, start, report);
   report->folded_faces = 0;
   report->folded_at = nlohmann::json::array();
+  report->folded_face_ids.clear();
   report->n_faces = static_cast<int>(mesh.n_faces());
   int quads = 0;
   for (const auto f : mesh.faces()) quads += mesh.valence(f) == 4;
@@ -76,6 +77,7 @@ void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>
     for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx());
     if (!FoldedSince(start, now, ids)) continue;
     ++report->folded_faces;
+    report->folded_face_ids.push_back(f.idx());
     if (report->folded_at.size() < 10) {
       Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
       for (const int v : ids) centroid += now[v] / static_cast<double>(ids.size());

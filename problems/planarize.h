@@ -27,6 +27,8 @@
 // linearised on was wrong by the time vertices had slid metres.
 #pragma once
 
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "geometry/quad_extraction.h"
@@ -47,6 +49,7 @@ struct PlanarizeReport {
   int folded_faces = 0;                              // convex when extracted, now not: a corner
                                                      // turned inside out or the panel folded
   nlohmann::json folded_at = nlohmann::json::array();  // centroids of the first 10 of them
+  std::vector<int> folded_face_ids;                  // all of them (figures; not in report.json)
   int closed_edges = 0;                              // edges closed between passes (stage_planarize.cc)
   int passes = 1;                                    // planarisations run
   int darts_cut = 0;
