@@ -25,13 +25,8 @@ while [ $# -gt 0 ]; do
     *) echo "layout_ensemble.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
-if [ -z "$bin" ]; then
-  bash scripts/build.sh pqlayout > /dev/null
-  bin=build/cli/pqlayout
-fi
-command -v jq > /dev/null || { echo "layout_ensemble.sh: needs jq (apt-get install jq)" >&2; exit 2; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+name=layout_ensemble.sh
+source benchmarks/ensemble_setup.sh
 echo "source,reference_edge,working_edge,working_triangles,alignment_deg_w05,min_crossing_deg,faces_below_min_angle,foldovers,spacing_cv_phi_w05,levelset_s" > "$out"
 for edge in $edges; do
   for we in $working; do

@@ -1,4 +1,4 @@
-// CloseShortEdges and CutDarts (panel_repair.h).
+// CloseShortEdges, CutDarts, SplitFoldedPanels and SplitWarpedPanels (panel_repair.h).
 #include "geometry/panel_repair.h"
 
 #include <algorithm>
@@ -7,6 +7,7 @@
 #include <set>
 #include <utility>
 
+#include "geometry/planarity.h"
 #include "geometry/polygon_shape.h"
 #include "geometry/quad_cleanup.h"
 
@@ -138,48 +139,101 @@ std::vector<std::vector<int>> Fan(const std::vector<int>& polygon, size_t k) {
   return fan;
 }
 
-}  // namespace
-
-int SplitFoldedPanels(const std::vector<Eigen::Vector3d>& start, ExtractedMesh* mesh) {
-  const std::vector<Eigen::Vector3d> now = Positions(mesh->mesh);
-  std::set<std::pair<int, int>> edges;  // a diagonal that is an edge already would pinch the mesh
-  for (const auto e : mesh->mesh.edges()) {
-    const auto he = mesh->mesh.halfedge_handle(e, 0);
-    const int a = mesh->mesh.from_vertex_handle(he).idx(), b = mesh->mesh.to_vertex_handle(he).idx();
+// Every edge of the mesh as a (smaller, larger) vertex index pair.
+std::set<std::pair<int, int>> Edges(const PolyMesh& mesh) {
+  std::set<std::pair<int, int>> edges;
+  for (const auto e : mesh.edges()) {
+    const auto he = mesh.halfedge_handle(e, 0);
+    const int a = mesh.from_vertex_handle(he).idx(), b = mesh.to_vertex_handle(he).idx();
     edges.insert({std::min(a, b), std::max(a, b)});
   }
+  return edges;
+}
+
+bool IsEdge(const std::set<std::pair<int, int>>& edges, int a, int b) {
+  return edges.count({std::min(a, b), std::max(a, b)}) > 0;
+}
+
+// The smallest corner angle of the triangles of a fan, radians; −1 if one of them faces
+// against `normal` or is degenerate.
+double SmallestAngle(const std::vector<Eigen::Vector3d>& position, const std::vector<std::vector<int>>& fan,
+                     const Eigen::Vector3d& normal) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const auto& t : fan) {
+    if (!(normal.dot((position[t[1]] - position[t[0]]).cross(position[t[2]] - position[t[0]])) > 0.0)) return -1.0;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d u = (position[t[(i + 1) % 3]] - position[t[i]]).normalized();
+      const Eigen::Vector3d w = (position[t[(i + 2) % 3]] - position[t[i]]).normalized();
+      smallest = std::min(smallest, std::acos(std::clamp(u.dot(w), -1.0, 1.0)));
+    }
+  }
+  return smallest;
+}
+
+}  // namespace
+
+namespace {
+
+// Cuts every face for which corner(face) returns k < its size into the fan from its corner k
+// (Fan); the vertices stay. corner sees the positions and the mesh's edges (a diagonal that is
+// an edge already would pinch the mesh). Returns the number of faces cut.
+template <typename Corner>
+int CutIntoFans(ExtractedMesh* mesh, Corner corner) {
+  const std::vector<Eigen::Vector3d> position = Positions(mesh->mesh);
+  const std::set<std::pair<int, int>> edges = Edges(mesh->mesh);
   std::vector<std::vector<int>> faces;
   int split = 0;
   for (const auto f : mesh->mesh.faces()) {
     std::vector<int> face = FaceVertices(mesh->mesh, f);
-    if (face.size() < 4 || !FoldedSince(start, now, face)) {
+    const size_t k = corner(face, position, edges);
+    if (k >= face.size()) {
       faces.push_back(std::move(face));
       continue;
     }
-    const Eigen::Vector3d n = NewellNormal(start, face);
+    for (auto& t : Fan(face, k)) faces.push_back(std::move(t));
+    ++split;
+  }
+  if (split > 0) Rebuild(position, faces, mesh);
+  return split;
+}
+
+}  // namespace
+
+int SplitFoldedPanels(const std::vector<Eigen::Vector3d>& start, ExtractedMesh* mesh) {
+  return CutIntoFans(mesh, [&](const std::vector<int>& face, const std::vector<Eigen::Vector3d>& now,
+                               const std::set<std::pair<int, int>>& edges) {
     size_t best = face.size();
+    if (face.size() < 4 || !FoldedSince(start, now, face)) return best;
+    const Eigen::Vector3d n = NewellNormal(start, face);
     double best_area = -std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < face.size(); ++k) {
       double smallest = std::numeric_limits<double>::infinity();
       bool free = true;
       for (const auto& t : Fan(face, k))
         smallest = std::min(smallest, n.dot((now[t[1]] - now[t[0]]).cross(now[t[2]] - now[t[0]])));
-      for (size_t i = 2; i + 2 <= face.size(); ++i) {
-        const int a = face[k], b = face[(k + i) % face.size()];
-        free = free && !edges.count({std::min(a, b), std::max(a, b)});
-      }
+      for (size_t i = 2; i + 2 <= face.size(); ++i) free = free && !IsEdge(edges, face[k], face[(k + i) % face.size()]);
       if (free && smallest > best_area) best_area = smallest, best = k;
     }
-    if (best == face.size()) {
-      faces.push_back(std::move(face));
-      continue;
+    return best;
+  });
+}
+
+int SplitWarpedPanels(double max_delta, ExtractedMesh* mesh) {
+  if (!(max_delta > 0.0)) return 0;
+  return CutIntoFans(mesh, [&](const std::vector<int>& face, const std::vector<Eigen::Vector3d>& position,
+                               const std::set<std::pair<int, int>>& edges) {
+    size_t best = face.size();
+    if (face.size() != 4 ||
+        !(QuadPlanarityDelta(position[face[0]], position[face[1]], position[face[2]], position[face[3]]) > max_delta))
+      return best;
+    const Eigen::Vector3d n = NewellNormal(position, face);
+    double best_angle = 0.0;
+    for (size_t k = 0; k < 2; ++k) {
+      const double angle = IsEdge(edges, face[k], face[k + 2]) ? -1.0 : SmallestAngle(position, Fan(face, k), n);
+      if (angle > best_angle) best_angle = angle, best = k;
     }
-    for (auto& t : Fan(face, best)) faces.push_back(std::move(t));
-    ++split;
-  }
-  if (split == 0) return 0;
-  Rebuild(now, faces, mesh);
-  return split;
+    return best;
+  });
 }
 
 }  // namespace pqlayout

@@ -37,4 +37,13 @@ int CutDarts(ExtractedMesh* mesh);
 // cut; vertices neither move nor change number.
 int SplitFoldedPanels(const std::vector<Eigen::Vector3d>& start, ExtractedMesh* mesh);
 
+// SplitWarpedPanels: before planarisation, a quad whose planarity δ (geometry/planarity.h) is
+// above max_delta — its diagonals further apart than max_delta × their mean length — is cut
+// into the two triangles of the diagonal whose smallest corner angle is the larger (not along
+// a diagonal that is an edge already, nor into a triangle facing against the quad's normal).
+// Flattening such a quad moves its vertices far (on the Great Court × strain ensemble up to 2
+// edge lengths), which folds and shortens its neighbours' edges; cut, it needs no planarity.
+// max_delta ≤ 0: nothing. Returns the number of quads cut; vertices neither move nor change number.
+int SplitWarpedPanels(double max_delta, ExtractedMesh* mesh);
+
 }  // namespace pqlayout

@@ -249,6 +249,10 @@ KeyTable::KeyTable(Config* c) {
          "× the first round's planarity weight: no triangle turns over or flattens below 5 % of its extracted area; 0: off");
   Number("planarize.target_delta", &c->planarize.target_delta, Positive(1.0), "stop when max planarity δ ≤ target_delta");
   Integer("planarize.max_rounds", &c->planarize.max_rounds, 1, 1000, "outer rounds (planarity weight raised after each)");
+  Number("planarize.split_warped", &c->planarize.split_warped, NonNegative(1.0),
+         "quads whose planarity δ as extracted is above this are cut into two triangles before planarisation "
+         "(the diagonal with the larger smallest angle): flattening them would move their vertices far and fold "
+         "their neighbours (0: none)");
   Number("planarize.close_edges", &c->planarize.close_edges, NonNegative(1.0),
          "edges that planarisation shortens below close_edges × h are closed (their ends one vertex: a quad "
          "becomes the triangle it has turned into), panels it folded are cut into triangles, and the mesh "

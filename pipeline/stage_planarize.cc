@@ -59,6 +59,10 @@ Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json*
   std::vector<Eigen::Vector3d> start;
   for (const auto v : state->quads.mesh.vertices()) start.push_back(ToEigen(state->quads.mesh.point(v)));
   int rounds = 0, iterations = 0, closed = 0, split = 0, passes = 0;
+  const int warped = SplitWarpedPanels(state->config.planarize.split_warped, &state->planarized);
+  if (warped > 0)
+    LOG(INFO) << "planarize: " << warped << " quads warped beyond δ " << state->config.planarize.split_warped
+              << " as extracted cut into two triangles (planarize.split_warped)";
   nlohmann::json ceres = nlohmann::json::array();
   const double closed_edge = state->config.planarize.close_edges;
   for (;;) {
@@ -76,7 +80,7 @@ Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json*
               << " folded panels cut into triangles; planarising again";
   }
   report.rounds = rounds, report.iterations = iterations, report.ceres = ceres;
-  report.closed_edges = closed, report.passes = passes, report.folded_split = split;
+  report.closed_edges = closed, report.passes = passes, report.folded_split = split, report.warped_split = warped;
   if (closed_edge > 0.0) report.darts_cut = CutDarts(&state->planarized);
   MeasurePanelShapes(state->planarized.mesh, start, h, state->config.extract.min_edge, &report);
   *metrics = report.ToJson();

@@ -123,6 +123,7 @@ struct PlanarizeOptions {
   double target_delta = 1e-3;  // stop when max planarity δ ≤ target
   int max_rounds = 20;         // outer rounds (closest-point refresh, planarity weight raise)
   double close_edges = 0.1;    // × h: edges planarisation shortens below this are closed, then planarised again (0: never)
+  double split_warped = 0.05;  // quads with δ above this as extracted are cut into two triangles first (0: none)
 };
 
 struct StiffenWeights {

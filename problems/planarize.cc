@@ -92,7 +92,7 @@ nlohmann::json PlanarizeReport::ToJson() const {
           {"boundary_deviation", boundary_deviation}, {"max_displacement", max_displacement},
           {"edge_length_min", edge_length_min}, {"edges_below_min_edge", edges_below_min_edge},
           {"folded_faces", folded_faces}, {"folded_at", folded_at},
-          {"closed_edges", closed_edges}, {"passes", passes}, {"darts_cut", darts_cut}, {"folded_split", folded_split},
+          {"closed_edges", closed_edges}, {"passes", passes}, {"darts_cut", darts_cut}, {"folded_split", folded_split}, {"warped_split", warped_split},
           {"n_faces", n_faces}, {"quad_fraction", quad_fraction},
           {"max_displacement_edges", max_displacement_edges}, {"rounds", rounds},
           {"iterations", iterations},         {"ceres", ceres}};

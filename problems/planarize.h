@@ -52,8 +52,9 @@ struct PlanarizeReport {
   std::vector<int> folded_face_ids;                  // all of them (figures; not in report.json)
   int closed_edges = 0;                              // edges closed between passes (stage_planarize.cc)
   int passes = 1;                                    // planarisations run
-  int darts_cut = 0;
-  int folded_split = 0;                              // folded panels cut into triangles between passes                                 // planar quads with a reflex corner cut in two triangles
+  int darts_cut = 0;                                 // planar quads with a reflex corner cut in two triangles
+  int folded_split = 0;                              // folded panels cut into triangles between passes
+  int warped_split = 0;                              // quads cut into two triangles before planarisation (planarize.split_warped)
   int n_faces = 0;                                   // of the planarised mesh (after the repair)
   double quad_fraction = 0.0;                        // ... and its share of quads
   int rounds = 0;

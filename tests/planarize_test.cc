@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <set>
 #include <memory>
 
 #include <cmath>
@@ -383,6 +384,57 @@ TEST(PanelRepair, AFoldedQuadIsCutIntoTriangles) {
   EXPECT_EQ(FaceSides(grid.mesh), (std::map<int, int>{{3, 4}}));
   EXPECT_EQ(grid.mesh.n_vertices(), 6u);
   EXPECT_EQ(grid.stats.rejected_faces, 0);
+}
+
+// SplitWarpedPanels: in a 2 × 1 grid of unit quads (right quad 1–2–5–4), lifting vertex 5 =
+// (2, 1) by 0.3 warps the right quad (δ = 0.103) and leaves the left one planar: only the right
+// quad is cut, into two triangles facing up, along 2–4 (smallest angle 45°; along 1–5: 43.8°).
+// With vertex 5 also pushed out to x = 2.8 the cut stays on 2–4 (1–5: 22.4°); with vertex 2
+// pushed out to x = 2.8 instead it moves to 1–5 (43.8° against 25.7°). A threshold above δ,
+// or 0, cuts nothing.
+TEST(PanelRepair, AWarpedQuadIsCutAlongItsBetterDiagonal) {
+  using V = Eigen::Vector3d;
+  // Which diagonal of the right quad was cut: {1, 5} or {2, 4}; {} if none.
+  const auto diagonal = [](const ExtractedMesh& grid) {
+    std::set<int> common = {1, 2, 4, 5};
+    int triangles = 0;
+    for (const auto f : grid.mesh.faces()) {
+      std::set<int> ids;
+      for (const auto v : grid.mesh.fv_range(f)) ids.insert(v.idx());
+      const int missing = !ids.count(1) + !ids.count(2) + !ids.count(4) + !ids.count(5);
+      if (ids.size() != 3 || missing != 1) continue;  // not one of the right quad's triangles
+      ++triangles;
+      std::set<int> both;
+      for (const int v : common)
+        if (ids.count(v)) both.insert(v);
+      common = both;
+      std::vector<V> p;
+      for (const auto v : grid.mesh.fv_range(f)) p.push_back(ToEigen(grid.mesh.point(v)));
+      EXPECT_GT((p[1] - p[0]).cross(p[2] - p[0]).z(), 0.0);  // facing up, as the quad did
+    }
+    return triangles == 2 ? common : std::set<int>{};
+  };
+  const auto warped = [](V five, V two) {
+    ExtractedMesh grid = QuadGrid(2, 1, 1.0, [](double, double) { return 0.0; });
+    grid.mesh.set_point(VertexHandle(5), ToOpenMesh(five));
+    grid.mesh.set_point(VertexHandle(2), ToOpenMesh(two));
+    return grid;
+  };
+  ExtractedMesh grid = warped({2.0, 1.0, 0.3}, {2.0, 0.0, 0.0});
+  const double delta = QuadPlanarityDelta(V(1, 0, 0), V(2, 0, 0), V(2, 1, 0.3), V(1, 1, 0));
+  EXPECT_NEAR(delta, 0.3 / std::sqrt(4.18) / (0.5 * (std::sqrt(2.09) + std::sqrt(2.0))), 1e-12);  // 0.103
+  EXPECT_EQ(SplitWarpedPanels(delta + 1e-9, &grid), 0);
+  EXPECT_EQ(SplitWarpedPanels(0.0, &grid), 0);
+  ASSERT_EQ(SplitWarpedPanels(0.05, &grid), 1);
+  EXPECT_EQ(FaceSides(grid.mesh), (std::map<int, int>{{3, 2}, {4, 1}}));
+  EXPECT_EQ(grid.mesh.n_vertices(), 6u);
+  EXPECT_EQ(diagonal(grid), (std::set<int>{2, 4}));
+  grid = warped({2.8, 1.0, 0.3}, {2.0, 0.0, 0.0});
+  ASSERT_EQ(SplitWarpedPanels(0.05, &grid), 1);
+  EXPECT_EQ(diagonal(grid), (std::set<int>{2, 4}));
+  grid = warped({2.0, 1.0, 0.3}, {2.8, 0.0, 0.0});
+  ASSERT_EQ(SplitWarpedPanels(0.05, &grid), 1);
+  EXPECT_EQ(diagonal(grid), (std::set<int>{1, 5}));
 }
 
 TEST(Planarize, NoisyPlanarGridReturnsToItsPlane) {
