@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# What the Great Court's grid shell is worth over an ensemble of meshes, whole runs: each
-# reference edge length × each guidance source, the compliance of the planarised shell and
+# What a roof's grid shell is worth over an ensemble of meshes (the Great Court unless --config),
+# whole runs: each reference edge length × each guidance source, the compliance of the planarised shell and
 # after stiffen, the panels planarisation built, the targets met. One CSV row per run and a
 # summary per source (median, range, ratio max/min).
 #
@@ -10,15 +10,17 @@
 # curvature layout stayed within 56–60k J. A change meant to make the shell stiffer is judged
 # by this distribution, never by one run.
 #
-#   bash benchmarks/stiffness_ensemble.sh [--sources "strain curvature"] [--edges "1.4 1.45 1.5 1.55 1.6 0.8 0.5"]
+#   bash benchmarks/stiffness_ensemble.sh [--config examples/great_court.yaml] [--sources "strain curvature"]
+#                                         [--edges "1.4 1.45 1.5 1.55 1.6 0.8 0.5"]
 #                                         [--set KEY=VALUE]... [--jobs 2] [--out FILE.csv] [--bin PQLAYOUT]
 # ~4 min on 2 cores at the defaults (14 whole runs of 10k–112k reference triangles).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-sources="strain curvature" edges="1.4 1.45 1.5 1.55 1.6 0.8 0.5" jobs=2 out=benchmarks/ensemble/stiffness_ensemble.csv bin=""
+config=examples/great_court.yaml sources="strain curvature" edges="1.4 1.45 1.5 1.55 1.6 0.8 0.5" jobs=2 out=benchmarks/ensemble/stiffness_ensemble.csv bin=""
 sets=()
 while [ $# -gt 0 ]; do
   case "$1" in
+    --config) config=$2; shift 2 ;;
     --sources) sources=$2; shift 2 ;;
     --edges) edges=$2; shift 2 ;;
     --set) sets+=(--set "$2"); shift 2 ;;
@@ -32,7 +34,7 @@ name=stiffness_ensemble.sh
 source benchmarks/ensemble_setup.sh
 run_one() {  # source edge
   local dir="$tmp/$1_$2"
-  "$bin" run examples/great_court.yaml --set surface.edge_length="$2" --set guidance.source="$1" \
+  "$bin" run "$config" --set surface.edge_length="$2" --set guidance.source="$1" \
     --set output.fields=false "${sets[@]}" --out "$dir" -q > /dev/null 2>&1 ||
     { echo "stiffness_ensemble: run failed ($1, edge $2)" >&2; return 1; }
   jq -r --arg s "$1" --arg e "$2" '.stages as $st | [$s, $e, $st.surface.n_faces,
@@ -43,7 +45,7 @@ run_one() {  # source edge
   rm -rf "$dir/figures" "$dir"/*.obj "$dir"/*.vtk 2> /dev/null || true
 }
 export -f run_one
-export bin tmp
+export bin tmp config
 export sets_string="${sets[*]:-}"
 pairs=()
 for s in $sources; do for e in $edges; do pairs+=("$s $e"); done; done

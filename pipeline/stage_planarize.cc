@@ -44,12 +44,14 @@ std::string PlanarityTitle(const PolyMesh& mesh, const PlanarizeReport& report) 
   return title;
 }
 
-// Planarisation passes: after each, the edges it closed (shorter than planarize.close_edges × h)
-// are closed for good and the panels it folded cut into triangles (geometry/panel_repair.h),
-// and the mesh planarised again, its triangles held the way round they were extracted
-// (planarize.weights.orientation). Up to 8 passes: each repair can open new short edges
-// elsewhere; with 5 (and the triangles held harder) the Great Court × strain still closed 10
-// edges after the last pass and kept a 0.0006 h edge (a pass is 0.05–0.1 s there).
+// First the quads warped beyond planarize.split_warped as extracted become two triangles
+// (geometry/panel_repair.h, SplitWarpedPanels). Then planarisation passes: after each, the
+// edges it closed (shorter than planarize.close_edges × h) are closed for good and the panels
+// it folded cut into triangles (geometry/panel_repair.h), and the mesh planarised again, its
+// triangles held the way round they were extracted (planarize.weights.orientation). Up to 8
+// passes: each repair can open new short edges elsewhere; with 5 (and the triangles held
+// harder) the Great Court × strain still closed 10 edges after the last pass and kept a
+// 0.0006 h edge (a pass is 0.05–0.1 s there).
 constexpr int kMaxPasses = 8;
 
 Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
