@@ -170,10 +170,6 @@ double SmallestAngle(const std::vector<Eigen::Vector3d>& position, const std::ve
   return smallest;
 }
 
-}  // namespace
-
-namespace {
-
 // Cuts every face for which corner(face) returns k < its size into the fan from its corner k
 // (Fan); the vertices stay. corner sees the positions and the mesh's edges (a diagonal that is
 // an edge already would pinch the mesh). Returns the number of faces cut.
