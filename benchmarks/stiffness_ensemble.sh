@@ -38,7 +38,7 @@ run_one() {  # source edge
     --set output.fields=false "${sets[@]}" --out "$dir" -q > /dev/null 2>&1 ||
     { echo "stiffness_ensemble: run failed ($1, edge $2)" >&2; return 1; }
   jq -r --arg s "$1" --arg e "$2" '.stages as $st | [$s, $e, $st.surface.n_faces,
-    $st.levelset.alignment_rms_deg_weight_above_half, $st.levelset.min_crossing_angle_deg,
+    $st.levelset.alignment_rms_deg_weight_above_half, ($st.levelset.alignment_rms_deg_source_above_half // $st.levelset.alignment_rms_deg_weight_above_half), $st.levelset.min_crossing_angle_deg,
     $st.extract.quad_fraction, $st.planarize.quad_fraction, $st.planarize.warped_split, $st.planarize.folded_split,
     $st.planarize.closed_edges, $st.stiffen.compliance_before, $st.stiffen.compliance_after,
     .targets.met, $st.levelset.seconds + $st.planarize.seconds + $st.stiffen.seconds] | @csv' "$dir/report.json" > "$dir/row.csv"
@@ -50,7 +50,7 @@ export sets_string="${sets[*]:-}"
 pairs=()
 for s in $sources; do for e in $edges; do pairs+=("$s $e"); done; done
 printf '%s\n' "${pairs[@]}" | xargs -P "$jobs" -L 1 bash -c 'sets=($sets_string); run_one "$0" "$1"'
-echo "source,reference_edge,reference_triangles,alignment_deg_w05,min_crossing_deg,extract_quads,planarized_quads,warped_split,folded_split,closed_edges,compliance_before_J,compliance_after_J,targets_met,solve_s" > "$out"
+echo "source,reference_edge,reference_triangles,alignment_deg_w05,alignment_to_source_deg_w05,min_crossing_deg,extract_quads,planarized_quads,warped_split,folded_split,closed_edges,compliance_before_J,compliance_after_J,targets_met,solve_s" > "$out"
 for s in $sources; do for e in $edges; do cat "$tmp/${s}_${e}/row.csv" >> "$out"; done; done
 /usr/bin/python3 - "$out" <<'EOF'
 import csv, statistics, sys

@@ -78,6 +78,13 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   if (options.source == "strain") PQ_RETURN_IF_ERROR(ComputeStrainGuidance(surface, v_z, options, &g));
   else if (options.source == "curvature") PQ_RETURN_IF_ERROR(ComputeCurvatureGuidance(surface, options, &g));
   else PQ_RETURN_IF_ERROR(ReadGuidanceFile(surface, options, &g));
+  const bool fallback = options.fallback == "curvature" && options.source != "curvature";
+  double fallback_area = 0.0;
+  if (fallback) {
+    GuidanceField curvature;
+    PQ_RETURN_IF_ERROR(ComputeCurvatureGuidance(surface, options, &curvature));
+    fallback_area = AddCurvatureFallback(surface, curvature, options.fallback_weight, &g);
+  }
 
   double weight_sum = 0.0, area_above_half = 0.0;
   int faces_above_half = 0;
@@ -94,10 +101,16 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
               {"weight_mean", weight_sum / surface.num_faces()},
               {"faces_weight_above_half", static_cast<double>(faces_above_half) / surface.num_faces()},
               {"area_weight_above_half", area_above_half / surface.total_area()},
-              {"singularities", SingularityMetrics(surface, g)}};
+              {"singularities", SingularityMetrics(surface, g)},
+              {"fallback", fallback ? options.fallback : "none"},
+              {"area_fallback", fallback_area}};
   (*metrics)["sources"] = SourceMetrics(surface, g);
   (*metrics)["n_sources"] = (*metrics)["sources"].size();
-  LOG(INFO) << "guidance: " << options.source << ", " << 100.0 * faces_above_half / surface.num_faces()
+  LOG(INFO) << "guidance: " << options.source
+            << (fallback ? ", curvature lines where it is weak (" + std::to_string(std::lround(100.0 * fallback_area)) +
+                               " % of the area)"
+                         : std::string())
+            << ", " << 100.0 * faces_above_half / surface.num_faces()
             << " % of faces with weight > 0.5, " << (*metrics)["singularities"]["count"] << " singularities "
             << (*metrics)["singularities"]["by_index"].dump()
             << ", " << (*metrics)["n_sources"] << " sources (minima of the field's magnitude)";
@@ -106,8 +119,10 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
     PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
   }
   const bool strain = options.source == "strain";
-  const std::string title = strain ? "Guidance: principal strain directions (integral curves)"
-                                   : "Guidance: " + options.source + " directions (integral curves)";
+  // (The fallback's title drops "(integral curves)": the long one ran off the figure.)
+  const std::string title = fallback ? "Guidance: " + options.source + "; curvature lines where weak"
+                            : strain ? "Guidance: principal strain directions (integral curves)"
+                                     : "Guidance: " + options.source + " directions (integral curves)";
   const std::string label = strain ? "|ε_max|" : options.source == "curvature" ? "|κ1 − κ2| [1/m]" : "|d|";
   return WriteGuidanceFigure(surface, g.direction, g.magnitude, label, g.weight, title,
                              out->Path("figures/guidance.svg"));

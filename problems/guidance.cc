@@ -88,6 +88,44 @@ Status ComputeCurvatureGuidance(const SurfaceModel& surface, const GuidanceOptio
   return Status::Ok();
 }
 
+void AppendFace(const GuidanceField& from, int f, GuidanceField* to) {
+  to->direction.push_back(from.direction[f]);
+  to->major.push_back(from.major[f]);
+  to->minor.push_back(from.minor[f]);
+  to->magnitude.push_back(from.magnitude[f]);
+  to->weight.push_back(from.weight[f]);
+  if (from.source_weight.empty()) return;
+  to->source_direction.push_back(from.source_direction[f]);
+  to->source_weight.push_back(from.source_weight[f]);
+}
+
+double AddCurvatureFallback(const SurfaceModel& surface, const GuidanceField& curvature, double beta,
+                            GuidanceField* field) {
+  field->source_direction = field->direction;
+  field->source_weight = field->weight;
+  double area = 0.0;
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    const Eigen::Vector3d& n = surface.face_normal(f);
+    const Eigen::Vector3d& d_k = curvature.direction[f];
+    const double w_s = field->weight[f], w_c = (1.0 - w_s) * beta * curvature.weight[f];
+    if (w_c > w_s) area += surface.face_area(f);
+    Eigen::Vector3d e1 = field->direction[f] - field->direction[f].dot(n) * n;
+    if (!(e1.norm() > 0.0) || !(w_s > 0.0)) {  // no source here: the curvature line alone
+      field->direction[f] = d_k;
+      field->weight[f] = std::min(1.0, w_c);
+      continue;
+    }
+    e1.normalize();
+    const Eigen::Vector3d e2 = n.cross(e1);
+    const double theta = std::atan2(d_k.dot(e2), d_k.dot(e1));
+    const double x = w_s + w_c * std::cos(2.0 * theta), y = w_c * std::sin(2.0 * theta);
+    const double half = 0.5 * std::atan2(y, x);
+    field->direction[f] = std::cos(half) * e1 + std::sin(half) * e2;
+    field->weight[f] = std::min(1.0, std::hypot(x, y));
+  }
+  return area / surface.total_area();
+}
+
 namespace {
 
 // One data line of a guidance file: its words and their values.

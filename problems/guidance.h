@@ -27,7 +27,15 @@ struct GuidanceField {
   std::vector<double> magnitude;           // per face: what the weight is measured on
   std::vector<double> weight;              // per face: alignment weight in [0, 1]
   double scale = 0.0;                      // the reference the threshold is relative to
+  // With a fallback (AddCurvatureFallback): the source's own direction and weight per face,
+  // before the blend (empty without one), so that the layout's alignment to the source alone
+  // can be measured where the source is strong.
+  std::vector<Eigen::Vector3d> source_direction;
+  std::vector<double> source_weight;
 };
+
+// Appends face f of `from` (every per-face field, the source ones if present) to `to`.
+void AppendFace(const GuidanceField& from, int f, GuidanceField* to);
 
 // The alignment weight of each magnitude (see above).
 std::vector<double> AlignmentWeights(const std::vector<double>& magnitude, double scale, double threshold, double ramp);
@@ -36,5 +44,21 @@ Status ComputeStrainGuidance(const SurfaceModel& surface, const std::vector<doub
                              const GuidanceOptions& options, GuidanceField* field);
 Status ComputeCurvatureGuidance(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field);
 Status ReadGuidanceFile(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field);
+
+// The curvature fallback (guidance.fallback = curvature; beyond the paper). The paper aligns
+// the layout only where the principal strain is strong and leaves the rest to the other
+// terms; there the level lines wander (the strain field's weak zones are full of spurious
+// singularities) and the cells come out sheared and warped. Here the principal curvature
+// lines fill in, blended with the source as line fields (doubled angles), per face, in the
+// face plane with e₁ = the source direction d_s and θ the angle of the curvature direction d_κ:
+//   z = w_s·(1, 0) + w_c·(cos 2θ, sin 2θ),  w_c = (1 − w_s)·β·w_κ,
+//   direction = e₁ rotated by ½ arg z (so ⟨direction, d_s⟩ ≥ 0: the source's orientation kept),
+//   weight = min(1, |z|).
+// Where w_s = 1 the source is unchanged; where w_s = 0 the face follows d_κ at β·w_κ. A face
+// without a source direction takes d_κ. Measured (benchmarks/RESULTS.md, 2026-12-04): the
+// Great Court's strain layout over 7 meshes, compliance after stiffen × 0.41 (median
+// 158,262 → 65,051 J at β = 0.5). Returns the share of the area where w_c > w_s.
+double AddCurvatureFallback(const SurfaceModel& surface, const GuidanceField& curvature, double beta,
+                          GuidanceField* field);
 
 }  // namespace pqlayout

@@ -35,6 +35,9 @@ namespace pqlayout {
 struct LevelSetMetrics {
   double alignment_rms_deg = 0.0;         // weighted RMS angle of φ's level lines to d (alignment_rms_deg)
   double alignment_rms_deg_strong = 0.0;  // the same over faces with weight > 0.5
+  // With a guidance fallback: the RMS angle to the source's own direction over the faces
+  // where the source's weight > 0.5 (without one: alignment_rms_deg_strong).
+  double alignment_rms_deg_source_strong = 0.0;
   double spacing_cv_phi = 0.0;            // coefficient of variation of 1/|∇φ| (spacing_cv_phi)
   double spacing_cv_psi = 0.0;            // (spacing_cv_psi)
   double spacing_cv_phi_strong = 0.0;     // over faces with weight > 0.5

@@ -15,6 +15,7 @@ using namespace levelset_internal;
 nlohmann::json LevelSetMetrics::ToJson() const {
   return {{"alignment_rms_deg", alignment_rms_deg},
           {"alignment_rms_deg_weight_above_half", alignment_rms_deg_strong},
+          {"alignment_rms_deg_source_above_half", alignment_rms_deg_source_strong},
           {"spacing_cv_phi", spacing_cv_phi},
           {"spacing_cv_psi", spacing_cv_psi},
           {"spacing_cv_phi_weight_above_half", spacing_cv_phi_strong},
@@ -48,7 +49,8 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
   LevelSetMetrics m;
   std::vector<Eigen::Vector3d> gphi(s.num_faces()), gpsi(s.num_faces());
   std::vector<char> all(s.num_faces(), 1), strong(s.num_faces(), 0);
-  double align = 0.0, align_w = 0.0, align_s = 0.0, align_sw = 0.0, conj = 0.0;
+  double align = 0.0, align_w = 0.0, align_s = 0.0, align_sw = 0.0, align_src = 0.0, align_srcw = 0.0, conj = 0.0;
+  const bool blended = !g.source_weight.empty();
   m.min_crossing_angle_deg = 90.0;
   for (int f = 0; f < s.num_faces(); ++f) {
     const Eigen::Vector3d& n = s.face_normal(f);
@@ -60,6 +62,11 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
     align += wa * angle * angle;
     align_w += wa;
     if (strong[f]) align_s += wa * angle * angle, align_sw += wa;
+    if (blended && g.source_weight[f] > 0.5) {
+      const double source_sine = std::min(1.0, std::abs(gphi[f].normalized().dot(g.source_direction[f])));
+      const double source_angle = std::asin(source_sine) * kDegrees, swa = g.source_weight[f] * s.face_area(f);
+      align_src += swa * source_angle * source_angle, align_srcw += swa;
+    }
     const Eigen::Vector3d t1 = n.cross(gphi[f]).normalized(), t2 = n.cross(gpsi[f]).normalized();
     const Eigen::Matrix3d S = ConjugacyResidual::Regularised(geo.S[f], n, geo.flat_curvature);
     const double c = t1.dot(S * t2) / (ConjugacyResidual::CurvatureSum(geo.S[f], n) + geo.flat_curvature);
@@ -74,6 +81,8 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
   }
   m.alignment_rms_deg = align_w > 0 ? std::sqrt(align / align_w) : 0.0;
   m.alignment_rms_deg_strong = align_sw > 0 ? std::sqrt(align_s / align_sw) : 0.0;
+  m.alignment_rms_deg_source_strong =
+      !blended ? m.alignment_rms_deg_strong : align_srcw > 0 ? std::sqrt(align_src / align_srcw) : 0.0;
   m.spacing_cv_phi = SpacingCv(s, gphi, all);
   m.spacing_cv_psi = SpacingCv(s, gpsi, all);
   m.spacing_cv_phi_strong = SpacingCv(s, gphi, strong);

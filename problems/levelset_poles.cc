@@ -83,13 +83,7 @@ Status CutCaps(const SurfaceModel& s, const GuidanceField& g, std::vector<LevelS
   }
   *holed_guidance = GuidanceField();
   holed_guidance->scale = g.scale;
-  for (const int f : kept) {
-    holed_guidance->direction.push_back(g.direction[f]);
-    holed_guidance->major.push_back(g.major[f]);
-    holed_guidance->minor.push_back(g.minor[f]);
-    holed_guidance->magnitude.push_back(g.magnitude[f]);
-    holed_guidance->weight.push_back(g.weight[f]);
-  }
+  for (const int f : kept) AppendFace(g, f, holed_guidance);
   *holed = std::move(model);
   return Status::Ok();
 }

@@ -31,13 +31,13 @@ GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceFiel
         (working.position(ids[0]) + working.position(ids[1]) + working.position(ids[2])) / 3.0;
     const int r = query.OnSurface(centroid).element;
     const Eigen::Vector3d& n = working.face_normal(f);
-    Eigen::Vector3d d = g.direction[r] - g.direction[r].dot(n) * n;
-    d = d.norm() > 0.0 ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d(n.unitOrthogonal());
-    out.direction.push_back(d);
-    out.major.push_back(g.major[r]);
-    out.minor.push_back(g.minor[r]);
-    out.magnitude.push_back(g.magnitude[r]);
-    out.weight.push_back(g.weight[r]);
+    const auto project = [&n](const Eigen::Vector3d& direction) {
+      const Eigen::Vector3d d = direction - direction.dot(n) * n;
+      return d.norm() > 0.0 ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d(n.unitOrthogonal());
+    };
+    AppendFace(g, r, &out);
+    out.direction.back() = project(g.direction[r]);
+    if (!out.source_direction.empty()) out.source_direction.back() = project(g.source_direction[r]);
   }
   return out;
 }

@@ -65,6 +65,11 @@ struct GuidanceOptions {
   double threshold = 0.2;  // no alignment where |ε_max| < threshold × max |ε_max|
   double ramp = 0.1;       // weight ramps 0 → 1 over [threshold, threshold + ramp] × max
   std::string file;        // source = file: per-face CSV (id,dx,dy,dz[,weight])
+  // Where the source's weight is below 1 (strain: where the membrane barely strains, which the
+  // paper leaves to "don't care"), the principal curvature lines fill in: curvature | none
+  // (problems/guidance.h, AddCurvatureFallback). Not for source = curvature.
+  std::string fallback = "curvature";
+  double fallback_weight = 0.5;  // β: the fallback's weight is (1 − w_source) · β · w_curvature
 };
 
 struct LayoutOptions {

@@ -7,8 +7,9 @@
 // from the list. wavy × curvature (~25 s since the joint solve ends its crawl, 60 s before:
 // three bump tops, each a pole since 2026-12-02, the
 // level sets solved with and without them) was 9 misses and 23 fold-overs before, now 2.
-// The domes with strain guidance must get their pole (problems/levelset_poles.cc): one
-// crown, one cap, alignment met (it was 10.8° and 14.8° without).
+// The domes with strain guidance got a pole each (problems/levelset_poles.cc; alignment 10.8°
+// and 14.8° without); since the curvature fallback the square dome gets two, the circular
+// dome none (its crown is a weak zone the blend fills).
 // The Great Court at 112k reference triangles (surface.edge_length 0.5, issue 19) takes the
 // remeshed working-mesh path the 12k golden run does not: its strain layout once got a seam
 // round the Reading Room (18.6°, quad fraction 0.68) and must meet every target.
@@ -41,24 +42,32 @@ const CorpusCase kCases[] = {
     {"barrel", "curvature", {}},
     {"canopy", "strain", {{"quad_fraction", 0.73}}},  // its 8-gon got a centre vertex off the corners' average
     {"canopy", "curvature", {}},
-    {"dome_circular", "strain", {{"spacing_cv", 0.358}, {"interior_non_quads", 3}}},  // a pole since 2026-12-02
+    // A pole since 2026-12-02. With the curvature fallback (guidance.fallback, 2026-12-04) the
+    // crown's weak zone follows the dome's near-umbilic curvature lines: spacing CV 0.286 → 0.429,
+    // interior non-quads 2 → 0, alignment 0.5° → 5.7° (met).
+    {"dome_circular", "strain", {{"spacing_cv", 0.536}, {"interior_non_quads", 3}}},
     {"dome_circular", "curvature", {}},  // quads 0.79 → 0.81 since the joint solve's stall stop
     // A pole. Since 2026-12-04 its cap's rim has no corners (geometry/quad_extraction.h, caps):
     // interior non-quads 3 → 0 here, dome_circular × strain 1 → 2, wavy × curvature 3 → 4.
-    {"dome_square", "strain", {{"spacing_cv", 0.418}}},
+    // Curvature fallback: the pole's fan loses rays next to the blended field's ±½ pairs:
+    // interior non-quads 0 → 4 (three 3-gons and a 5-gon), spacing CV 0.334 → 0.349.
+    {"dome_square", "strain", {{"spacing_cv", 0.418}, {"interior_non_quads", 7}}},
     {"dome_square", "curvature", {}},
     // Openings drawn as circles since 2026-12-03 (geometry/roof_generators.cc): the hole's
     // polygon no longer has a kink at every vertex for the panels to follow. Strain: edge_min_h
     // 0.13 → 0.20 h (met), min crossing 25.3° → 27.4°, area below 30° 1.9 % → 0.01 %, no floor
     // rounds; curvature: min crossing 23.8° → 28.0°, area 9.2 % → 0.07 %, alignment 16.9° → 14.0°.
-    {"hole_offcentre", "strain", {{"alignment", 18.0}, {"spacing_cv", 0.514}}},
+    // Curvature fallback: alignment 14.4° → 7.7° and spacing CV 0.41 → met, but a pole's fan
+    // at (-7.7, 0) loses rays: interior non-quads 0 → 6.
+    {"hole_offcentre", "strain", {{"alignment", 18.0}, {"spacing_cv", 0.514}, {"interior_non_quads", 10}}},
     // Curved chords cut into the fewest equal pieces (geometry/boundary_refinement.cc) since
     // 2026-12-03, not halved: edge_min_h 0.187 → 0.213 h (met), quads 0.773 → 0.778.
     // Interior valence-2 vertices dropped since 2026-12-04 (DropInteriorValence2Vertices): its
     // triangle + pentagon and triangle + 9-gon on one such vertex each → interior non-quads 4 → 1.
     {"hole_offcentre", "curvature", {{"alignment", 17.5}, {"quad_fraction", 0.72}, {"interior_non_quads", 2}}},
     // The floor rounds: min crossing 10.1° → 27.9° (met), area below 30° 0.3 % → 0.6 %.
-    {"hypar", "strain", {{"alignment", 17.0}, {"quad_fraction", 0.72}}},
+    // Curvature fallback: quads 0.781 → 0.842 (met), crossing 27.9° → 30.2°, spacing CV 0.23 → 0.32.
+    {"hypar", "strain", {{"alignment", 17.0}, {"quad_fraction", 0.72}, {"spacing_cv", 0.40}}},
     {"hypar", "curvature", {}},
     {"l_shape", "strain", {{"alignment", 13.7}}},
     {"l_shape", "curvature", {}},
@@ -76,8 +85,10 @@ const CorpusCase kCases[] = {
     {"two_holes", "curvature", {}},
     // The floor rounds: min crossing 18.8° → 25.3° (met), area below 30° 28 % → 5.4 %
     // (strain); 23.2° → 26.4° (met), 0.3 % → 1.25 % (curvature).
+    // Curvature fallback: alignment 18.4° → 10.7°, area below 30° 5.4 % → met, quads 0.78 →
+    // 0.87 (met), interior non-quads 1 → 0; spacing CV 0.235 → 0.321.
     {"wavy", "strain",
-     {{"alignment", 20.8}, {"area_below_30", 0.067}, {"quad_fraction", 0.72}, {"interior_non_quads", 4}}},
+     {{"alignment", 20.8}, {"area_below_30", 0.067}, {"quad_fraction", 0.72}, {"interior_non_quads", 4}, {"spacing_cv", 0.40}}},
     {"wavy", "curvature", {{"area_below_30", 0.016}, {"interior_non_quads", 6}}},  // three poles
     {"great_court_112k", "strain", {}, "great_court.yaml", {"surface.edge_length=0.5"}},
     {"great_court_112k", "curvature", {{"spacing_cv", 0.46}, {"interior_non_quads", 2}},
@@ -123,29 +134,38 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
       if (t.at("name") == "interior_non_quads" && !t.at("met").get<bool>())
         EXPECT_NE(t.at("cause").get<std::string>().find("the fan loses a ray"), std::string::npos) << t.at("cause");
   const nlohmann::json& stages = report.at("stages");
-  const bool pole = c.source == "strain" && (c.roof == "dome_circular" || c.roof == "dome_square");
-  if (pole) EXPECT_EQ(stages.at("levelset").at("poles").size(), 1u);
+  // Poles of the strain layouts since the curvature fallback (2026-12-04): the circular dome's
+  // crown is a weak zone the blend fills with near-umbilic curvature lines, no pole kept (it was
+  // one); the square dome's blended field has two crowns, two poles.
+  const std::map<std::string, size_t> strain_poles{{"dome_circular", 0}, {"dome_square", 2}};
+  const bool pole = c.source == "strain" && strain_poles.count(c.roof) > 0;
+  if (pole) EXPECT_EQ(stages.at("levelset").at("poles").size(), strain_poles.at(c.roof));
   if (c.roof == "wavy" && c.source == "curvature") EXPECT_EQ(stages.at("levelset").at("poles").size(), 3u);
   if (c.roof == "dome_circular" && c.source == "curvature")  // its joint solve crawls: cut at 100 iterations
     EXPECT_EQ(stages.at("levelset").at("ceres").at("joint").at("termination"), "STALLED");
-  if (c.roof == "wavy" && c.source == "strain") {  // no crossing round reaches a better state: three run, not ten
-    EXPECT_TRUE(stages.at("levelset").at("ceres").contains("crossing_round_3"));
-    EXPECT_FALSE(stages.at("levelset").at("ceres").contains("crossing_round_4"));
+  if (c.roof == "wavy" && c.source == "strain") {  // after round 1 none reaches a better state: four run, not ten
+    EXPECT_TRUE(stages.at("levelset").at("ceres").contains("crossing_round_4"));
+    EXPECT_FALSE(stages.at("levelset").at("ceres").contains("crossing_round_5"));
   }
   // Where the crossing rounds leave a face below 25° the floor rounds' end is kept; where
   // they do not, the floor rounds do not run.
   // (the openings' roofs took them too until their holes were drawn as circles).
-  const bool floored = c.roof == "wavy" || (c.source == "strain" && c.roof == "hypar");
+  // With the curvature fallback (2026-12-04) the hypar's and the wavy roof's strain layouts
+  // no longer need them (crossing 30.2°, 30.5°) and the off-centre opening's does (26.4°).
+  const bool floored = (c.roof == "wavy" && c.source == "curvature") || (c.source == "strain" && c.roof == "hole_offcentre");
   EXPECT_EQ(stages.at("levelset").at("crossing_rounds_kept") == "floor", floored);
   EXPECT_EQ(stages.at("levelset").at("ceres").contains("floor_round_1"), floored);
-  if (pole) EXPECT_EQ(stages.at("extract").at("caps").size(), 1u);
+  if (pole) EXPECT_EQ(stages.at("extract").at("caps").size(), strain_poles.at(c.roof));
   if (c.roof == "great_court_112k") EXPECT_TRUE(stages.at("levelset").at("poles").empty());  // no crown
-  if (c.roof == "great_court_112k") {  // solved on a working mesh, no seam round the ring for strain
+  if (c.roof == "great_court_112k") {  // solved on a working mesh, no seam round the ring
     const nlohmann::json& levelset = report.at("stages").at("levelset");
     EXPECT_LT(levelset.at("working_mesh_triangles").get<int>(), report.at("stages").at("surface").at("n_faces").get<int>() / 4);
     EXPECT_EQ(levelset.at("working_mesh"), "CGAL remeshing (not from the plan: fewer than 200000 triangles)");
-    if (c.source == "strain") EXPECT_EQ(levelset.at("seams").at("count"), 0);
-    if (c.source == "strain") EXPECT_EQ(levelset.at("seams").at("uncut_ring_holes"), 1);
+    // Strain with the curvature fallback: the blend has the curvature field's four umbilics,
+    // so the layout has the curvature layout's five seams (four branch points, one round the
+    // ring); the paper's strain layout had none (no seam worth cutting, the ring's uncut).
+    if (c.source == "strain") EXPECT_EQ(levelset.at("seams").at("count"), 5);
+    if (c.source == "strain") EXPECT_EQ(levelset.at("seams").at("branch_points"), 4);
   }
   std::cout << c.roof << " × " << c.source << ": " << met << " of 11 targets met\n";
 }

@@ -33,12 +33,11 @@ nlohmann::json GreatCourtStages(const std::string& source, std::vector<std::stri
   return report["stages"];
 }
 
-// The targets both layouts meet: no fold-over and every crossing ≥ 30° (issue 4), quad
+// The targets both layouts meet (ExpectCommonTargets): no fold-over and every crossing ≥ 30° (issue 4), quad
 // fraction ≥ 0.85, boundary within 0.01 h, no edge below 0.2 h, no panel above seven
 // sides (issue 5), δ ≤ 1e-3 with closeness ≤ 0.02 h (issue 6).
-void ExpectCommonTargets(const nlohmann::json& s, double h) {
+void ExpectCommonTargetsExceptCrossing(const nlohmann::json& s, double h) {
   EXPECT_EQ(s["levelset"]["foldovers"].get<int>(), 0);
-  EXPECT_GE(s["levelset"]["min_crossing_angle_deg"].get<double>(), 30.0);
   EXPECT_GE(s["extract"]["quad_fraction"].get<double>(), 0.85);
   EXPECT_LE(s["extract"]["boundary_deviation"].get<double>(), 0.01 * h);
   EXPECT_GE(s["extract"]["edge_length_min"].get<double>(), 0.2);  // relative to h
@@ -61,6 +60,11 @@ void ExpectCommonTargets(const nlohmann::json& s, double h) {
   for (const auto& [sides, count] : s["extract"]["face_sides"].items()) EXPECT_LE(std::stoi(sides), 6) << count;
 }
 
+void ExpectCommonTargets(const nlohmann::json& s, double h) {
+  ExpectCommonTargetsExceptCrossing(s, h);
+  EXPECT_GE(s["levelset"]["min_crossing_angle_deg"].get<double>(), 30.0);
+}
+
 // Issue 4's level-set targets (alignment where weight > 0.5, spacing CV there and overall).
 void ExpectLevelsetTargets(const nlohmann::json& l) {
   EXPECT_LE(l["alignment_rms_deg_weight_above_half"].get<double>(), 6.0);
@@ -73,8 +77,10 @@ void ExpectLevelsetTargets(const nlohmann::json& l) {
 // Strain guidance meets every target, some with thin margins (measured: alignment 5.93°,
 // CV 0.149 / 0.131 / 0.088, crossing 30.05°; quad fraction 0.852, boundary 0.00998 h,
 // shortest edge 0.205 h; δ 1.5e-4, closeness 0.007 h).
+// This is the paper's layout: alignment only where the strain is strong (guidance.fallback =
+// none; the default fills the weak zones with curvature lines, next test).
 TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
-  const nlohmann::json s = GreatCourtStages("strain");
+  const nlohmann::json s = GreatCourtStages("strain", {"guidance.fallback=none"});
   ExpectCommonTargets(s, 3.0);
   ExpectLevelsetTargets(s["levelset"]);
   // The strain field's singularities lie in the weak bands along the edges: no seam is worth
@@ -96,7 +102,7 @@ TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
   const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();  // TempDir() would wipe it
   std::ifstream svg(std::filesystem::temp_directory_path() /
                     ("pqlayout_test_" + std::string(test->test_suite_name()) + "_" + test->name()) /
-                    "strain1/figures/planarity.svg");
+                    "strain2/figures/planarity.svg");
   ASSERT_TRUE(svg.good());
   const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
   const auto& p = s["planarize"];
@@ -104,6 +110,26 @@ TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
   EXPECT_NE(text.find("Planarity δ after planarisation: " + std::to_string(quads) + " quads, "), std::string::npos);
   const int folded = p["folded_faces"].get<int>();
   EXPECT_NE(text.find(folded == 0 ? ", none folded" : ", " + std::to_string(folded) + " folded"), std::string::npos);
+}
+
+// The default strain layout: where the strain is weak (52 % of the area) the curvature lines
+// fill in (guidance.fallback = curvature, β = 0.5). The strain field's 38 singularities in its
+// weak zones are gone, the blend keeps the curvature field's four umbilics (index −½); the
+// layout aligns to the strain where it is strong far better than the paper's (measured 1.92°
+// against 5.93°) and the frame after stiffen is half as compliant: 75,400 J against 154,794 J
+// here, ≤ 76,597 J over seven meshes of 11k–112k triangles where the paper's layout was
+// ≥ 115,488 J (benchmarks/RESULTS.md, 2026-12-04). Measured: crossing 30.01°, quads 0.872.
+TEST(GreatCourt, StrainLayoutWithCurvatureFallbackIsTwiceAsStiff) {
+  const nlohmann::json s = GreatCourtStages("strain", {}, Stage::kStiffen);
+  ExpectCommonTargetsExceptCrossing(s, 3.0);
+  EXPECT_GE(s["levelset"]["min_crossing_angle_deg"].get<double>(), 25.0);  // issue 17's; 28.0–31.0° over the seven
+  EXPECT_EQ(s["guidance"]["fallback"].get<std::string>(), "curvature");
+  EXPECT_NEAR(s["guidance"]["area_fallback"].get<double>(), 0.525, 0.05);
+  EXPECT_EQ(s["guidance"]["singularities"]["by_index"], (nlohmann::json{{"-0.5", 4}}));
+  EXPECT_LE(s["levelset"]["alignment_rms_deg_source_above_half"].get<double>(), 3.0);
+  EXPECT_LE(s["levelset"]["alignment_rms_deg_weight_above_half"].get<double>(), 3.0);
+  EXPECT_EQ(s["planarize"]["folded_faces"].get<int>(), 0);
+  EXPECT_LE(s["stiffen"]["compliance_after"].get<double>(), 100000.0);
 }
 
 // Curvature guidance (the paper's reference layout, Fig. 8b): with seams from the four
@@ -135,7 +161,8 @@ TEST(GreatCourt, CurvatureLayoutMeetsIssues4To6WithBranchPoints) {
 // 25.7° with no fold-over (floor_gc12k_strain.csv), and over the five meshes of 1.4–1.6 m
 // 25.2–30.0°: on this mesh the floor rounds must run, be kept, and hold issue 17's 25°.
 TEST(GreatCourt, StrainLayoutOnTheCoarserMeshHoldsTheFloor) {
-  const nlohmann::json l = GreatCourtStages("strain", {"surface.edge_length=1.6"}, Stage::kLevelset)["levelset"];
+  const nlohmann::json l =
+      GreatCourtStages("strain", {"surface.edge_length=1.6", "guidance.fallback=none"}, Stage::kLevelset)["levelset"];
   EXPECT_EQ(l["foldovers"].get<int>(), 0);
   EXPECT_GE(l["min_crossing_angle_deg"].get<double>(), 25.0);
   EXPECT_EQ(l["crossing_rounds_kept"].get<std::string>(), "floor");

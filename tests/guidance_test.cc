@@ -151,6 +151,56 @@ TEST(Guidance, WeightsRampFromThreshold) {
   EXPECT_EQ(step, (std::vector<double>{0, 0, 0, 0, 0, 1, 1}));
 }
 
+// The curvature fallback blends two line fields by their doubled angles (guidance.h): on a
+// flat mesh, per face, source d_s = e₁ with weight w_s and curvature direction at angle α with
+// weight w_κ, β = 0.5: z = w_s + (1 − w_s)·β·w_κ·e^{2iα}; direction at ½ arg z from d_s.
+TEST(Guidance, CurvatureFallbackBlendsLineFieldsByDoubledAngles) {
+  const SurfaceModel s(Generate("disk", 2.0, 0.0, 0.0, 0.5));
+  ASSERT_GE(s.num_faces(), 6);
+  struct Case {
+    double w_s, alpha_deg, w_k;
+    double expected_deg, expected_weight;
+  };
+  const double beta = 0.5;
+  const std::vector<Case> cases{
+      {1.0, 70.0, 1.0, 0.0, 1.0},                      // a strong source stays as it is
+      {0.0, 70.0, 1.0, 70.0, 0.5},                     // no source: the curvature line at β·w_κ
+      {0.5, 90.0, 1.0, 0.0, 0.25},                     // crossed lines cancel: 0.5 − 0.25
+      {0.5, 45.0, 1.0, 0.5 * std::atan2(0.25, 0.5) * 180.0 / M_PI, std::hypot(0.5, 0.25)},
+      {0.5, -45.0, 0.4, -0.5 * std::atan2(0.1, 0.5) * 180.0 / M_PI, std::hypot(0.5, 0.1)},
+      {0.25, 180.0, 1.0, 0.0, 0.25 + 0.375}};        // a line has no sign: α = 180° is α = 0°
+  GuidanceField source, curvature;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const Case& c = cases[f % cases.size()];
+    const Eigen::Vector3d n = s.face_normal(f), e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+    const double a = c.alpha_deg * M_PI / 180.0;
+    source.direction.push_back(f % 2 == 0 ? e1 : Eigen::Vector3d(-e1));  // the source's orientation is kept
+    source.weight.push_back(c.w_s);
+    curvature.direction.push_back(std::cos(a) * e1 + std::sin(a) * e2);
+    curvature.weight.push_back(c.w_k);
+  }
+  GuidanceField blended = source;
+  AddCurvatureFallback(s, curvature, beta, &blended);
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const Case& c = cases[f % cases.size()];
+    const Eigen::Vector3d n = s.face_normal(f);
+    const Eigen::Vector3d d_s = source.direction[f], e2 = n.cross(d_s);
+    const double sign = c.w_s > 0.0 ? 1.0 : (f % 2 == 0 ? 1.0 : -1.0);  // no source: d_κ as given
+    const double angle = std::atan2(blended.direction[f].dot(e2), blended.direction[f].dot(d_s)) * 180.0 / M_PI;
+    const double expected = c.w_s > 0.0 ? c.expected_deg : std::atan2(sign * std::sin(c.alpha_deg * M_PI / 180.0), sign * std::cos(c.alpha_deg * M_PI / 180.0)) * 180.0 / M_PI;
+    EXPECT_NEAR(angle, expected, 1e-9) << "face " << f;
+    EXPECT_NEAR(blended.direction[f].norm(), 1.0, 1e-12);
+    EXPECT_NEAR(blended.direction[f].dot(n), 0.0, 1e-12);
+    EXPECT_NEAR(blended.weight[f], c.expected_weight, 1e-12) << "face " << f;
+    EXPECT_EQ(blended.source_weight[f], source.weight[f]);
+    EXPECT_EQ(blended.source_direction[f], source.direction[f]);
+  }
+  GuidanceField none = source;  // β = 0: the source alone where it has a direction
+  AddCurvatureFallback(s, curvature, 0.0, &none);
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (source.weight[f] > 0.0) EXPECT_NEAR(none.weight[f], source.weight[f], 1e-15);
+}
+
 TEST(Guidance, FileSourceProjectsOntoFacesAndNamesErrors) {
   const auto dir = testing::TempDir();
   const SurfaceModel s(testing::ToMesh(testing::GridSoup(2, [](double x, double) { return x; })));
