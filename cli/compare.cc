@@ -51,6 +51,8 @@ const Row kRows[] = {
     {"planarize", "closeness_max", "closeness, max [m]"},
     {"planarize", "closeness_mean", "closeness, mean [m]"},
     {"levelset", "alignment_rms_deg", "alignment to its guidance, RMS [°]"},
+    {"levelset", "alignment_rms_deg_source_above_half", "alignment to the source where it is strong, RMS [°]"},
+    {"guidance", "area_fallback", "area following the curvature fallback (share)"},
 };
 
 std::string Number(const nlohmann::json& v) {

@@ -207,6 +207,13 @@ TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
                 100.0 * (row["strain"].get<double>() / row["curvature"].get<double>() - 1.0), 1e-9);
   }
   EXPECT_TRUE(has_mean);
+  for (const auto& row : comparison["rows"]) {  // the curvature run has no fallback; strain's covers a share
+    if (row["metric"] != "area_fallback") continue;
+    EXPECT_EQ(row["curvature"].get<double>(), 0.0);
+    EXPECT_GE(row["strain"].get<double>(), 0.0);
+    EXPECT_LE(row["strain"].get<double>(), 1.0);
+    EXPECT_TRUE(row["difference_percent"].is_null());
+  }
   for (const char* figure : {"compliance_strain.svg", "compliance_curvature.svg"}) {
     const std::string svg = ReadFile(dir + "/cmp/figures/" + figure);
     EXPECT_EQ(svg.rfind("<svg", 0), 0u) << figure;
