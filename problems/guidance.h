@@ -55,7 +55,9 @@ Status ReadGuidanceFile(const SurfaceModel& surface, const GuidanceOptions& opti
 //   direction = e₁ rotated by ½ arg z (so ⟨direction, d_s⟩ ≥ 0: the source's orientation kept),
 //   weight = min(1, |z|).
 // Where w_s = 1 the source is unchanged; where w_s = 0 the face follows d_κ at β·w_κ. A face
-// without a source direction takes d_κ. Measured (benchmarks/RESULTS.md, 2026-12-04): the
+// without a source direction, or without source weight, takes d_κ (even at weight 0: the
+// line field's singularities, hence the seams, are those of the blend, so β = 0 is not the
+// same as guidance.fallback = none). Measured (benchmarks/RESULTS.md, 2026-12-04): the
 // Great Court's strain layout over 7 meshes, compliance after stiffen × 0.41 (median
 // 158,262 → 65,051 J at β = 0.5). Returns the share of the area where w_c > w_s.
 double AddCurvatureFallback(const SurfaceModel& surface, const GuidanceField& curvature, double beta,
