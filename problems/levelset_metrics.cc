@@ -57,14 +57,16 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
     gphi[f] = Gradient(geo, s, f, phi);
     gpsi[f] = Gradient(geo, s, f, psi);
     strong[f] = g.weight[f] > 0.5;
-    const double sine = std::min(1.0, std::abs(gphi[f].normalized().dot(g.direction[f])));
-    const double angle = std::asin(sine) * kDegrees, wa = g.weight[f] * s.face_area(f);
+    // The angle of φ's level line (⊥ ∇φ) to direction d, degrees.
+    const auto angle_to = [&](const Eigen::Vector3d& d) {
+      return std::asin(std::min(1.0, std::abs(gphi[f].normalized().dot(d)))) * kDegrees;
+    };
+    const double angle = angle_to(g.direction[f]), wa = g.weight[f] * s.face_area(f);
     align += wa * angle * angle;
     align_w += wa;
     if (strong[f]) align_s += wa * angle * angle, align_sw += wa;
     if (blended && g.source_weight[f] > 0.5) {
-      const double source_sine = std::min(1.0, std::abs(gphi[f].normalized().dot(g.source_direction[f])));
-      const double source_angle = std::asin(source_sine) * kDegrees, swa = g.source_weight[f] * s.face_area(f);
+      const double source_angle = angle_to(g.source_direction[f]), swa = g.source_weight[f] * s.face_area(f);
       align_src += swa * source_angle * source_angle, align_srcw += swa;
     }
     const Eigen::Vector3d t1 = n.cross(gphi[f]).normalized(), t2 = n.cross(gpsi[f]).normalized();
