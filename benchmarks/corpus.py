@@ -96,9 +96,12 @@ def main():
     parser.add_argument("--set", action="append", default=[], help="KEY=VALUE for every run")
     parser.add_argument("--roofs", default="", help="comma-separated roof names (default: all)")
     parser.add_argument("--out", default=str(HERE / "corpus"), help="output stem (.md, .csv)")
-    parser.add_argument("--figures", default=str(ROOT / "docs" / "corpus"),
-                        help="folder for the gallery's PNGs ('' for none)")
+    parser.add_argument("--figures", default=None,
+                        help="folder for the gallery's PNGs ('' for none; default docs/corpus, or STEM_figures "
+                             "with --out, so that an experiment leaves the README's gallery alone)")
     args = parser.parse_args()
+    if args.figures is None:
+        args.figures = str(ROOT / "docs" / "corpus") if args.out == str(HERE / "corpus") else args.out + "_figures"
     figures = Path(args.figures) if args.figures and shutil.which("rsvg-convert") else None
     if args.figures and figures is None:
         print("corpus: rsvg-convert not found, no gallery", file=sys.stderr)

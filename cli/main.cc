@@ -63,7 +63,17 @@ struct RunArguments {
   std::string out;
   std::string until = "analyze";
   std::string error_file;  // run: on failure the error line is also written here, on success removed
+  bool draft = false;      // --draft: --set levelset.draft=true
 };
+
+// `--draft` (run, compare, sweep): a quick look, the same as `--set levelset.draft=true`.
+constexpr const char* kDraftHelp =
+    "a quick look: the level sets on a coarser working mesh, ~5x faster, a different and usually somewhat softer "
+    "layout (same as --set levelset.draft=true; README \"Draft runs\")";
+std::vector<std::string> WithDraft(std::vector<std::string> sets, bool draft) {
+  if (draft) sets.push_back("levelset.draft=true");
+  return sets;
+}
 
 // `--error-file`: a failed run leaves its one-line error in a file (sweeps read it). An
 // interrupted run did not fail: the file is left as it was, like the output folder.
@@ -82,7 +92,7 @@ int RecordError(const std::string& error_file, int code, const Status& status) {
 int Run(const RunArguments& args, const std::string& command_line) {
   pqlayout::InstallInterruptHandlers();
   pqlayout::Config config;
-  const Status loaded = pqlayout::LoadConfig(args.config, args.sets, &config);
+  const Status loaded = pqlayout::LoadConfig(args.config, WithDraft(args.sets, args.draft), &config);
   if (!loaded.ok()) return RecordError(args.error_file, ExitCode(loaded), loaded);
   pqlayout::RunOptions options;
   options.config_path = args.config;
@@ -98,6 +108,7 @@ struct SweepArguments {
   pqlayout::SweepOptions options;
   int jobs = 1;
   bool list = false;
+  bool draft = false;  // --draft: --set levelset.draft=true in every run
 };
 
 // The path printed in --list commands: as invoked if that was a path, else found on PATH.
@@ -117,6 +128,7 @@ std::string ExecutableForRuns(const char* argv0) {
 int Sweep(SweepArguments args, const char* argv0) {
   if (args.options.out_dir.empty())
     args.options.out_dir = "out/" + std::filesystem::path(args.options.config_path).stem().string() + "-sweep";
+  args.options.overrides = WithDraft(args.options.overrides, args.draft);
   pqlayout::SweepPlan plan;
   if (int code = ExitCode(pqlayout::PlanSweep(args.options, &plan))) return code;
   if (args.list) {
@@ -147,6 +159,7 @@ CLI::App* AddRunCommand(CLI::App* app, RunArguments* args) {
   run->add_option("--out", args->out, "output folder (default: out/<config name>)");
   run->add_option("--until", args->until, "last stage to run")
       ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
+  run->add_flag("--draft", args->draft, kDraftHelp);
   run->add_option("--error-file", args->error_file,
                   "on failure also write the error line to this file (removed on success); used by sweeps");
   return run;
@@ -160,6 +173,7 @@ CLI::App* AddCompareCommand(CLI::App* app, RunArguments* args) {
   compare->add_option("--set", args->sets, "override a config key in both runs, KEY=VALUE; repeatable")
       ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   compare->add_option("--out", args->out, "output folder (default: out/<config name>-compare)");
+  compare->add_flag("--draft", args->draft, kDraftHelp);
   return compare;
 }
 
@@ -184,6 +198,7 @@ CLI::App* AddSweepCommand(CLI::App* app, SweepArguments* args) {
   sweep->add_option("--out", args->options.out_dir, "sweep folder (default: out/<config name>-sweep)");
   sweep->add_option("--until", args->options.until, "last stage of every run")
       ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
+  sweep->add_flag("--draft", args->draft, kDraftHelp);
   sweep->add_flag("--list", args->list,
                   "write DIR/sweep.json and print one `pqlayout run ...` command per run not yet finished "
                   "(for GNU parallel or a job array) instead of running; then `pqlayout collect DIR`");
@@ -193,7 +208,7 @@ CLI::App* AddSweepCommand(CLI::App* app, SweepArguments* args) {
 int Compare(const RunArguments& args, const std::string& command_line) {
   pqlayout::CompareOptions options;
   options.config_path = args.config;
-  options.overrides = args.sets;
+  options.overrides = WithDraft(args.sets, args.draft);
   options.command_line = command_line;
   options.out_dir = args.out.empty() ? "out/" + std::filesystem::path(args.config).stem().string() + "-compare"
                                      : args.out;

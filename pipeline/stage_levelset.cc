@@ -43,6 +43,7 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   (*metrics)["ceres"] = solution.solver;
   (*metrics)["working_mesh_triangles"] = solution.working_faces;
   (*metrics)["working_mesh"] = solution.working_mesh;
+  (*metrics)["working_edge"] = solution.working_edge;
   (*metrics)["crossing_rounds_kept"] = solution.crossing_rounds_kept;
   (*metrics)["density_scale"] = density_scale;
   (*metrics)["seams"] = solution.seams.ToJson();

@@ -114,6 +114,40 @@ TEST(Cli, OutputFieldsFalseWritesNoFieldFiles) {
   EXPECT_NE(html.find("quads.obj"), std::string::npos);
 }
 
+// --draft (= --set levelset.draft=true) solves the level sets on a working mesh of edge 0.8 h
+// instead of 0.4 h, but at most a 16th of the shortest boundary loop: here (10 × 6 m, 32 m
+// round) the 1 m reference is kept at h = 2 m (0.8 m working edge) but remeshed to 1.6 m for
+// the draft, and at h = 3 m the draft's 2.4 m is capped to 2 m. An explicit
+// levelset.working_edge wins over the draft.
+TEST(Cli, DraftSolvesTheLevelSetsOnACoarserWorkingMesh) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "plane.yaml", kPlaneConfig);
+  struct Working {
+    int triangles;
+    double edge;
+    bool draft;
+  };
+  const auto working = [&](const std::string& name, const std::string& flags) {
+    const Result r = RunPqlayout(dir, "run plane.yaml -q --until levelset --set output.fields=false --out " + name + flags);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const auto report = ReadReport(dir + "/" + name);
+    const auto& l = report["stages"]["levelset"];
+    return Working{l["working_mesh_triangles"].get<int>(), l["working_edge"].get<double>(),
+                   report["config"]["levelset"]["draft"].get<bool>()};
+  };
+  const Working full = working("full", ""), draft = working("draft", " --draft"),
+                pinned = working("pinned", " --draft --set levelset.working_edge=0.8"),
+                capped = working("capped", " --draft --set layout.spacing=3");
+  EXPECT_FALSE(full.draft);
+  EXPECT_TRUE(draft.draft);
+  EXPECT_DOUBLE_EQ(full.edge, 0.8);
+  EXPECT_DOUBLE_EQ(draft.edge, 1.6);
+  EXPECT_LT(draft.triangles, full.triangles / 2) << full.triangles;
+  EXPECT_DOUBLE_EQ(pinned.edge, 0.8);
+  EXPECT_EQ(pinned.triangles, full.triangles);
+  EXPECT_NEAR(capped.edge, 2.0, 1e-9);
+}
+
 TEST(Cli, UntilStopsAfterTheStageAndRemovesStaleOutputs) {
   const auto dir = testing::TempDir();
   testing::WriteFile(dir, "plane.yaml", kPlaneConfig);
