@@ -18,7 +18,8 @@ using Eigen::Vector2d;
 using namespace figure;  // NOLINT: the shared figure helpers (report/figure_common.h)
 
 constexpr int kColourLevels = 64;           // colour quantisation of the resampled grid
-constexpr double kNotEnforcedWeight = 0.5;  // weight below this: alignment not enforced
+constexpr double kNotEnforcedWeight = 0.5;  // weight below this: hatched (the alignment term is weighted by w, so it is weak there)
+constexpr const char* kWeakLegend = "weak guidance (weight < 0.5): alignment weighted by it";
 const Rgb kMutedBrown{0xc4, 0xa2, 0x7a};    // hatch of the not-enforced region
 const Stroke kStreamline{Rgb{0x30, 0x30, 0x30}, 1.1, 0.9};  // integral curves
 const Stroke kFaintStreamline{Rgb{0xb0, 0xb0, 0xb0}, 0.9, 0.9};  // background curves
@@ -286,7 +287,7 @@ Status WriteGuidanceFigure(const SurfaceModel& surface,
   canvas.HaloPolylines(GuidanceCurves(surface, direction, options, canvas), kStreamline);
 
   DrawFrame(surface, scale, magnitude_label, &canvas);
-  canvas.Legend({{hatch, "alignment not enforced (weight < 0.5)"}});
+  canvas.Legend({{hatch, kWeakLegend}});
   return canvas.Write(path);
 }
 
@@ -330,7 +331,7 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
       {kPhiLine.colour.Hex(), LevelLegendLabel("φ = i·h", spacing, phi_levels.stride, "aligned with the guidance")},
       {kPsiLine.colour.Hex(), LevelLegendLabel("ψ = j·h", spacing, psi_levels.stride, "conjugate to φ")},
       {kFaintStreamline.colour.Hex(), "integral curves of the guidance field"},
-      {hatch, "alignment not enforced (weight < 0.5)"}};
+      {hatch, kWeakLegend}};
   legend.insert(legend.end(), crossings.begin(), crossings.end());
   if (seams != nullptr && seams->num_paths() > 0) {
     Rings paths;

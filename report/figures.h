@@ -58,7 +58,7 @@ Status WriteDisplacementFigure(const SurfaceModel& surface, const std::vector<do
                                const FigureOptions& options = {});
 
 // Paper Fig. 6: top view; faces coloured by `magnitude` (viridis, colour bar labelled
-// `magnitude_label`); faces with weight < 0.5 (alignment not enforced) hatched in a muted
+// `magnitude_label`); faces with weight < 0.5 (weak guidance: the alignment term is weighted by w) hatched in a muted
 // brown with a legend entry; evenly spaced integral curves of the line field `direction`
 // in dark grey on top; boundary outline; scale bar; north arrow; title. InvalidInput if
 // `direction` does not have one vector per face (zero vectors: no field there) or

@@ -253,6 +253,10 @@ TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
     EXPECT_EQ(svg.rfind("<svg", 0), 0u) << figure;
     EXPECT_NE(svg.find("nodal compliance [J]"), std::string::npos) << figure;
   }
+  // The strain figure says that its layout is not the paper's (the default curvature fallback).
+  EXPECT_NE(ReadFile(dir + "/cmp/figures/compliance_strain.svg").find("strain-guided layout; curvature lines where weak"),
+            std::string::npos);
+  EXPECT_EQ(ReadFile(dir + "/cmp/figures/compliance_curvature.svg").find("where weak"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir + "/cmp/strain/figures/compliance.svg"));
   const std::string table = ReadFile(dir + "/cmp/compare/table.md");
   EXPECT_EQ(table.rfind("| metric | strain guidance | curvature guidance | strain vs curvature |", 0), 0u);

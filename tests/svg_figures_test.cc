@@ -164,7 +164,7 @@ TEST_F(SmallMeshFigures, GuidanceFigureHasLegendLabelAndStreamlines) {
   const std::string svg = ReadText(path);
   ExpectSvgDocument(svg);
   EXPECT_EQ(Count(svg, "<path color="), surface_.num_faces());
-  EXPECT_NE(svg.find("alignment not enforced (weight &lt; 0.5)"), std::string::npos);
+  EXPECT_NE(svg.find("weak guidance (weight &lt; 0.5): alignment weighted by it"), std::string::npos);
   EXPECT_NE(svg.find("|ε_max|"), std::string::npos);
   EXPECT_EQ(Count(svg, "<use "), 2);  // streamlines over their halo
 }
@@ -225,7 +225,7 @@ TEST_F(LevelSetFigure, HasOneSubpathPerLevelLineAndTheLegend) {
             std::string::npos);
   EXPECT_NE(svg.find("level lines ψ = j·h, h = 3 m (conjugate to φ)"), std::string::npos);
   EXPECT_NE(svg.find("integral curves of the guidance field"), std::string::npos);
-  EXPECT_NE(svg.find("alignment not enforced (weight &lt; 0.5)"), std::string::npos);
+  EXPECT_NE(svg.find("weak guidance (weight &lt; 0.5): alignment weighted by it"), std::string::npos);
   EXPECT_NE(svg.find(">N</text>"), std::string::npos);  // north arrow
   EXPECT_EQ(svg.find("one in"), std::string::npos);     // every level drawn
   EXPECT_EQ(Count(svg, "<path color="), 0);             // no face colours
