@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Per-stage time regression check (issue 19): the Great Court at its default reference (12k
-# triangles) with both guidance sources and at 112k triangles (surface.edge_length 0.5, the
-# remeshed working-mesh path) with strain guidance, each run PQ_REPEAT times (default 3); the
+# triangles) with both guidance sources, at 112k triangles (surface.edge_length 0.5, the
+# remeshed working-mesh path) with strain guidance, and the 12k draft (levelset.draft), each run PQ_REPEAT times (default 3); the
 # median wall seconds of every stage (report.json `stages.<stage>.seconds`) and of the whole
 # run are compared with benchmarks/stage_baseline.csv.
 #
@@ -53,6 +53,7 @@ measure() {  # case name, then pqlayout --set arguments
 measure gc12k_strain --set guidance.source=strain
 measure gc12k_curvature --set guidance.source=curvature
 measure gc112k_strain --set guidance.source=strain --set surface.edge_length=0.5
+measure gc12k_draft --set guidance.source=strain --set levelset.draft=true
 
 if [[ "$update" == "--update" ]]; then
   cp "$current" "$baseline"
