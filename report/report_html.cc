@@ -336,7 +336,12 @@ Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out, const Vie
   page << PageStart("pqlayout report") << "<h1>pqlayout: statics-sensitive layout</h1>\n"
        << "<p class=\"sub\">" << Escape(Metric(report, "surface", "source")) << " · "
        << Escape(Format(At(report, {"config", "guidance", "source"}))) << " guidance · h = "
-       << Escape(Format(At(report, {"config", "layout", "spacing"}))) << " m</p>\n"
+       << Escape(Format(At(report, {"config", "layout", "spacing"}))) << " m"
+       << (At(report, {"config", "levelset", "draft"}) == true
+               ? " · <strong>draft</strong> (levelset.draft: the level sets on a coarser working mesh, a quick look, "
+                 "not the final layout)"
+               : "")
+       << "</p>\n"
        << "<h2>Summary</h2>\n<div class=\"cols\"><div>" << Summary(report) << "</div><div>"
        << KeyResults(report) << "</div><div>" << Timings(report) << "</div></div>\n"
        << View3dHtml(view3d) << "<h2>Figures</h2>\n<div class=\"figures\">\n";

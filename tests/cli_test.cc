@@ -146,6 +146,9 @@ TEST(Cli, DraftSolvesTheLevelSetsOnACoarserWorkingMesh) {
   EXPECT_DOUBLE_EQ(pinned.edge, 0.8);
   EXPECT_EQ(pinned.triangles, full.triangles);
   EXPECT_NEAR(capped.edge, 2.0, 1e-9);
+  // report.html says a draft is one, under its title.
+  EXPECT_NE(ReadFile(dir + "/draft/report.html").find("<strong>draft</strong>"), std::string::npos);
+  EXPECT_EQ(ReadFile(dir + "/full/report.html").find("<strong>draft</strong>"), std::string::npos);
 }
 
 TEST(Cli, UntilStopsAfterTheStageAndRemovesStaleOutputs) {
