@@ -46,7 +46,7 @@ constexpr double kWorkingCornerAngle = 30.0;  // corners the working mesh keeps 
 constexpr double kReuseReference = 0.7;       // solve on the reference if its mean edge ≥ this × working edge
 constexpr double kDefaultWorkingEdge = 0.4;   // × h: CGAL lands near 12k triangles on the Great Court at h = 3 m
 // × h, levelset.draft: a quarter of the triangles (2.9k on the Great Court), level sets ~5× faster;
-// over seven Great Court meshes the shell after stiffen is a median 9 % (strain) and 12 %
+// over seven Great Court meshes the shell after stiffen is a median 9 % (strain) and 5 %
 // (curvature) softer and one of eleven targets is missed (the shortest edge at the hole):
 // README "Draft runs". Never coarser than 1/kDraftLoopEdges of the shortest boundary loop (nor
 // finer than the default): at 0.8 h the two_holes roof's openings (10 and 12.6 m round, h =
