@@ -93,24 +93,22 @@ Status ReadRun(const std::filesystem::path& dir, RunResult* run) {
 
 // The strain figure's title: it names the curvature fallback when the strain run used it
 // (stages.guidance.fallback), so that the figure is not read as the paper's layout.
-std::string StrainFigureTitle(const std::filesystem::path& run) {
-  std::ifstream in(run / "report.json");
-  const nlohmann::json report = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+std::string StrainFigureTitle(const nlohmann::json& strain_report) {
   const nlohmann::json::json_pointer key("/stages/guidance/fallback");
-  const bool fallback = !report.is_discarded() && report.contains(key) && report[key] == "curvature";
+  const bool fallback = strain_report.contains(key) && strain_report[key] == "curvature";
   return fallback ? "Nodal compliance, strain-guided layout; curvature lines where weak"
                   : "Nodal compliance, strain-guided layout";
 }
 
 // figures/compliance_strain.svg and figures/compliance_curvature.svg on one colour scale.
-Status WriteCompareFigures(const std::filesystem::path& dir) {
+Status WriteCompareFigures(const std::filesystem::path& dir, const nlohmann::json& strain_report) {
   RunResult strain, curvature;
   PQ_RETURN_IF_ERROR(ReadRun(dir / "strain", &strain));
   PQ_RETURN_IF_ERROR(ReadRun(dir / "curvature", &curvature));
   const double shared = std::max(*std::max_element(strain.compliance.begin(), strain.compliance.end()),
                                  *std::max_element(curvature.compliance.begin(), curvature.compliance.end()));
   PQ_RETURN_IF_ERROR(WriteComplianceFigure(*strain.surface, strain.mesh, strain.compliance, shared,
-                                           StrainFigureTitle(dir / "strain"),
+                                           StrainFigureTitle(strain_report),
                                            (dir / "figures" / "compliance_strain.svg").string()));
   return WriteComplianceFigure(*curvature.surface, curvature.mesh, curvature.compliance, shared,
                                "Nodal compliance, curvature-guided layout (reference)",
@@ -174,7 +172,7 @@ Status RunCompare(const CompareOptions& options, nlohmann::json* comparison) {
   const std::filesystem::path dir(options.out_dir);
   PQ_RETURN_IF_ERROR(WriteTextFileAtomically((dir / "compare.json").string(), comparison->dump(2) + "\n"));
   PQ_RETURN_IF_ERROR(WriteTextFileAtomically((dir / "compare" / "table.md").string(), ComparisonTable(*comparison)));
-  PQ_RETURN_IF_ERROR(WriteCompareFigures(dir));
+  PQ_RETURN_IF_ERROR(WriteCompareFigures(dir, reports["strain"]));
   PQ_RETURN_IF_ERROR(WriteCompareReportHtml(*comparison, dir.string()));
   LOG(INFO) << "compare: wrote " << (dir / "compare.json").string() << " and compare/table.md\n" << ComparisonTable(*comparison);
   return Status::Ok();

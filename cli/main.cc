@@ -159,7 +159,7 @@ CLI::App* AddRunCommand(CLI::App* app, RunArguments* args) {
   run->add_option("--out", args->out, "output folder (default: out/<config name>)");
   run->add_option("--until", args->until, "last stage to run")
       ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
-  run->add_flag("--draft", args->draft, kDraftHelp);
+  run->add_flag("--draft", args->draft, kDraftHelp)->disable_flag_override();
   run->add_option("--error-file", args->error_file,
                   "on failure also write the error line to this file (removed on success); used by sweeps");
   return run;
@@ -173,7 +173,7 @@ CLI::App* AddCompareCommand(CLI::App* app, RunArguments* args) {
   compare->add_option("--set", args->sets, "override a config key in both runs, KEY=VALUE; repeatable")
       ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   compare->add_option("--out", args->out, "output folder (default: out/<config name>-compare)");
-  compare->add_flag("--draft", args->draft, kDraftHelp);
+  compare->add_flag("--draft", args->draft, kDraftHelp)->disable_flag_override();
   return compare;
 }
 
@@ -198,7 +198,7 @@ CLI::App* AddSweepCommand(CLI::App* app, SweepArguments* args) {
   sweep->add_option("--out", args->options.out_dir, "sweep folder (default: out/<config name>-sweep)");
   sweep->add_option("--until", args->options.until, "last stage of every run")
       ->check(CLI::IsMember(pqlayout::StageNames()))->capture_default_str();
-  sweep->add_flag("--draft", args->draft, kDraftHelp);
+  sweep->add_flag("--draft", args->draft, kDraftHelp)->disable_flag_override();
   sweep->add_flag("--list", args->list,
                   "write DIR/sweep.json and print one `pqlayout run ...` command per run not yet finished "
                   "(for GNU parallel or a job array) instead of running; then `pqlayout collect DIR`");

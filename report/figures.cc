@@ -18,7 +18,7 @@ using Eigen::Vector2d;
 using namespace figure;  // NOLINT: the shared figure helpers (report/figure_common.h)
 
 constexpr int kColourLevels = 64;           // colour quantisation of the resampled grid
-constexpr double kNotEnforcedWeight = 0.5;  // weight below this: hatched (the alignment term is weighted by w, so it is weak there)
+constexpr double kWeakWeight = 0.5;  // weight below this: hatched (the alignment term is weighted by w, so it is weak there)
 constexpr const char* kWeakLegend = "weak guidance (weight < 0.5): alignment weighted by it";
 const Rgb kMutedBrown{0xc4, 0xa2, 0x7a};    // hatch of the not-enforced region
 const Stroke kStreamline{Rgb{0x30, 0x30, 0x30}, 1.1, 0.9};  // integral curves
@@ -159,12 +159,12 @@ Rings RegionOutline(const SurfaceModel& surface, const std::vector<char>& in_reg
 
 
 // The faces with weight < 0.5 as one hatched region; returns the hatch fill for the legend.
-std::string DrawNotEnforcedRegion(const SurfaceModel& surface, const std::vector<double>& weight,
-                                  SvgCanvas* canvas) {
-  std::vector<char> not_enforced(surface.num_faces());
-  for (int f = 0; f < surface.num_faces(); ++f) not_enforced[f] = weight[f] < kNotEnforcedWeight;
+std::string DrawWeakGuidanceRegion(const SurfaceModel& surface, const std::vector<double>& weight,
+                                   SvgCanvas* canvas) {
+  std::vector<char> weak(surface.num_faces());
+  for (int f = 0; f < surface.num_faces(); ++f) weak[f] = weight[f] < kWeakWeight;
   const std::string hatch = canvas->HatchFill(kMutedBrown);
-  canvas->Region(RegionOutline(surface, not_enforced), hatch);
+  canvas->Region(RegionOutline(surface, weak), hatch);
   return hatch;
 }
 
@@ -283,7 +283,7 @@ Status WriteGuidanceFigure(const SurfaceModel& surface,
   SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
   DrawFaceColours(surface, magnitude, scale, options, &canvas);
 
-  const std::string hatch = DrawNotEnforcedRegion(surface, weight, &canvas);
+  const std::string hatch = DrawWeakGuidanceRegion(surface, weight, &canvas);
   canvas.HaloPolylines(GuidanceCurves(surface, direction, options, canvas), kStreamline);
 
   DrawFrame(surface, scale, magnitude_label, &canvas);
@@ -313,7 +313,7 @@ Status WriteLevelSetFigure(const SurfaceModel& surface, const std::vector<double
     return Status::InvalidInput(path + ": spacing h must be a positive number, got " +
                                 std::to_string(spacing));
   SvgCanvas canvas(TopViewBounds(surface), options.width_px, title);
-  const std::string hatch = DrawNotEnforcedRegion(surface, weight, &canvas);
+  const std::string hatch = DrawWeakGuidanceRegion(surface, weight, &canvas);
   const std::vector<LegendEntry> crossings =
       options.min_crossing_deg <= 0.0 ? std::vector<LegendEntry>{}
       : solved != nullptr ? DrawShallowCrossings(solved->surface, solved->phi, solved->psi, options.min_crossing_deg, &canvas)
