@@ -194,7 +194,7 @@ KeyTable::KeyTable(Config* c) {
   auto& g = c->guidance;
   Choice("guidance.source", &g.source, {"strain", "curvature", "file"},
          "guidance field: principal strain (the paper), principal curvature (the reference layout) or a CSV file");
-  Number("guidance.threshold", &g.threshold, kFraction, "no alignment to the source where |ε_max| < threshold × max |ε_max| (guidance.fallback fills in there)");
+  Number("guidance.threshold", &g.threshold, kFraction, "no alignment to the source where |ε_max| (less |ε_min| where the two differ in sign: guidance.shear_switch) < threshold × max |ε_max| (guidance.fallback fills in there)");
   Number("guidance.ramp", &g.ramp, kFraction, "alignment weight ramps from 0 to 1 over [threshold, threshold + ramp] × max");
   Path("guidance.file", &g.file, "guidance.source = file: per-face CSV id,dx,dy,dz[,weight]");
   Choice("guidance.fallback", &g.fallback, {"curvature", "none"},
@@ -202,6 +202,9 @@ KeyTable::KeyTable(Config* c) {
          "(none: alignment only where the source's weight says, as in the paper); not used with guidance.source = curvature");
   Number("guidance.fallback_weight", &g.fallback_weight, kFraction,
          "β: the curvature fallback's alignment weight is (1 − source weight) × β × curvature weight");
+  Choice("guidance.shear_switch", &g.shear_switch, {"weak", "paper"},
+         "strain: where ε_max and ε_min have opposite signs the weight comes from |ε_max| − |ε_min|, so it vanishes "
+         "where e_max (largest modulus) swaps by 90° (weak; the fallback fills in there), or from |ε_max| as in the paper");
 
   Number("layout.spacing", &c->layout.spacing, Positive(kMaxLength), "h, distance between neighbouring level lines, m");
   Choice("layout.density", &c->layout.density, {"auto", "spacing", "panel_area"},

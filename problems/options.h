@@ -70,6 +70,9 @@ struct GuidanceOptions {
   // (problems/guidance.h, AddCurvatureFallback). Not for source = curvature.
   std::string fallback = "curvature";
   double fallback_weight = 0.5;  // β: the fallback's weight is (1 − w_source) · β · w_curvature
+  // Strain weights where the principal strains have opposite signs: weak (from |ε_max| − |ε_min|,
+  // zero where the largest-modulus rule swaps e_max by 90°) | paper (from |ε_max| everywhere).
+  std::string shear_switch = "weak";
 };
 
 struct LayoutOptions {

@@ -59,7 +59,9 @@ const CorpusCase kCases[] = {
     // rounds; curvature: min crossing 23.8° → 28.0°, area 9.2 % → 0.07 %, alignment 16.9° → 14.0°.
     // Curvature fallback: alignment 14.4° → 7.7° and spacing CV 0.41 → met, but a pole's fan
     // at (-7.7, 0) loses rays: interior non-quads 0 → 6.
-    {"hole_offcentre", "strain", {{"alignment", 18.0}, {"spacing_cv", 0.514}, {"interior_non_quads", 10}}},
+    // Strain weights that vanish where e_max swaps by 90° (guidance.shear_switch, 2026-12-05):
+    // alignment 7.7° → 5.5°, crossing 26.4° → 28.1°, interior non-quads 6 → 0: all met.
+    {"hole_offcentre", "strain", {}},
     // Curved chords cut into the fewest equal pieces (geometry/boundary_refinement.cc) since
     // 2026-12-03, not halved: edge_min_h 0.187 → 0.213 h (met), quads 0.773 → 0.778.
     // Interior valence-2 vertices dropped since 2026-12-04 (DropInteriorValence2Vertices): its
@@ -67,11 +69,16 @@ const CorpusCase kCases[] = {
     {"hole_offcentre", "curvature", {{"alignment", 17.5}, {"quad_fraction", 0.72}, {"interior_non_quads", 2}}},
     // The floor rounds: min crossing 10.1° → 27.9° (met), area below 30° 0.3 % → 0.6 %.
     // Curvature fallback: quads 0.781 → 0.842 (met), crossing 27.9° → 30.2°, spacing CV 0.23 → 0.32.
-    {"hypar", "strain", {{"alignment", 17.0}, {"quad_fraction", 0.72}, {"spacing_cv", 0.40}}},
+    // guidance.shear_switch (2026-12-05): the hypar's membrane is nearly pure shear, e_max swapped
+    // by 90° along lines the solve bent to; alignment 14.5° → 8.0°, spacing CV 0.32 → 0.24: all met.
+    {"hypar", "strain", {}},
     {"hypar", "curvature", {}},
-    {"l_shape", "strain", {{"alignment", 13.7}}},
+    // guidance.shear_switch (2026-12-05): alignment 11.2° → 12.4°, spacing CV 0.25 → 0.28 (0.55 h
+    // at the re-entrant corner).
+    {"l_shape", "strain", {{"alignment", 13.7}, {"spacing_cv", 0.31}}},
     {"l_shape", "curvature", {}},
-    {"saddle_elliptic", "strain", {{"alignment", 11.3}, {"quad_fraction", 0.70}}},
+    // guidance.shear_switch (2026-12-05): alignment 10.1° → 6.3°, quads 0.73 → 0.82: all met.
+    {"saddle_elliptic", "strain", {}},
     {"saddle_elliptic", "curvature", {}},
     // Openings drawn as circles: the smaller (r = 1.1 h) keeps chords within 0.01 h only below
     // 0.29 h, so the chord refinement adds vertices there (quads 0.77 → 0.73 strain, 0.82 →
@@ -79,7 +86,8 @@ const CorpusCase kCases[] = {
     // Chords cut into the fewest equal pieces, not halved: 10 vertices (and triangles) fewer
     // each, quads 0.727 → 0.744 (strain), 0.793 → 0.816 (curvature, met); the shortest edges
     // left are a 0.30 h chord in halves (strain) and a crossing 0.09 h inside the rim.
-    {"two_holes", "strain", {{"alignment", 11.0}, {"quad_fraction", 0.69}, {"edge_min_h", 0.121}}},
+    // guidance.shear_switch (2026-12-05): alignment 10.4° → 5.4° (met).
+    {"two_holes", "strain", {{"quad_fraction", 0.69}, {"edge_min_h", 0.121}}},
     // Since 2026-12-04 the crossing 0.09 h inside the small opening's rim moves onto the chord's
     // new point (MoveOntoBoundary, geometry/boundary_refinement.cc): 0.091 → 0.205 h, all met.
     {"two_holes", "curvature", {}},
@@ -87,10 +95,12 @@ const CorpusCase kCases[] = {
     // (strain); 23.2° → 26.4° (met), 0.3 % → 1.25 % (curvature).
     // Curvature fallback: alignment 18.4° → 10.7°, area below 30° 5.4 % → met, quads 0.78 →
     // 0.87 (met), interior non-quads 1 → 0; spacing CV 0.235 → 0.321.
-    {"wavy", "strain",
-     {{"alignment", 20.8}, {"area_below_30", 0.067}, {"quad_fraction", 0.72}, {"interior_non_quads", 4}, {"spacing_cv", 0.40}}},
+    // guidance.shear_switch (2026-12-05): alignment 10.7° → 8.5°, spacing CV 0.32 → 0.30.
+    {"wavy", "strain", {{"alignment", 9.5}, {"spacing_cv", 0.33}}},
     {"wavy", "curvature", {{"area_below_30", 0.016}, {"interior_non_quads", 6}}},  // three poles
-    {"great_court_112k", "strain", {}, "great_court.yaml", {"surface.edge_length=0.5"}},
+    // guidance.shear_switch (2026-12-05): a draw of the chord refinement at the Reading Room's
+    // rim leaves a 0.190 h edge (0.2 h: the same miss as two of the seven ensemble meshes).
+    {"great_court_112k", "strain", {{"edge_min_h", 0.18}}, "great_court.yaml", {"surface.edge_length=0.5"}},
     {"great_court_112k", "curvature", {{"spacing_cv", 0.46}, {"interior_non_quads", 2}},
      "great_court.yaml", {"surface.edge_length=0.5"}},
 };
@@ -152,7 +162,10 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   // (the openings' roofs took them too until their holes were drawn as circles).
   // With the curvature fallback (2026-12-04) the hypar's and the wavy roof's strain layouts
   // no longer need them (crossing 30.2°, 30.5°) and the off-centre opening's does (26.4°).
-  const bool floored = (c.roof == "wavy" && c.source == "curvature") || (c.source == "strain" && c.roof == "hole_offcentre");
+  // With guidance.shear_switch (2026-12-05) the opening's strain layout crosses at 28.1° after
+  // the crossing rounds and the hypar's and the saddle's take the floor rounds' end (a draw).
+  const bool floored = (c.roof == "wavy" && c.source == "curvature") ||
+                       (c.source == "strain" && (c.roof == "hypar" || c.roof == "saddle_elliptic"));
   EXPECT_EQ(stages.at("levelset").at("crossing_rounds_kept") == "floor", floored);
   EXPECT_EQ(stages.at("levelset").at("ceres").contains("floor_round_1"), floored);
   if (pole) EXPECT_EQ(stages.at("extract").at("caps").size(), strain_poles.at(c.roof));

@@ -77,22 +77,24 @@ void ExpectLevelsetTargets(const nlohmann::json& l) {
 // Strain guidance meets every target, some with thin margins (measured: alignment 5.93°,
 // CV 0.149 / 0.131 / 0.088, crossing 30.05°; quad fraction 0.852, boundary 0.00998 h,
 // shortest edge 0.205 h; δ 1.5e-4, closeness 0.007 h).
-// This is the paper's layout: alignment only where the strain is strong (guidance.fallback =
-// none; the default fills the weak zones with curvature lines, next test).
+// This is the paper's layout: alignment only where |ε_max| is strong (guidance.fallback = none,
+// guidance.shear_switch = paper; the default fills the weak zones with curvature lines and
+// takes no weight where e_max swaps by 90°, next test).
 TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
-  const nlohmann::json s = GreatCourtStages("strain", {"guidance.fallback=none"});
+  const nlohmann::json s = GreatCourtStages("strain", {"guidance.fallback=none", "guidance.shear_switch=paper"});
   ExpectCommonTargets(s, 3.0);
   ExpectLevelsetTargets(s["levelset"]);
   // The strain field's singularities lie in the weak bands along the edges: no seam is worth
   // cutting, φ and ψ stay single-valued.
   EXPECT_EQ(s["levelset"]["seams"]["count"].get<int>(), 0);
-  // Its two crowns (cancelled +½ pairs in the weak bands) get no pole: the layout without meets
-  // the alignment target, so the pole layout is not solved (it aligned to 6.0°, at twice the
-  // stage's time).
+  // Its crown (a cancelled +½ pair in a weak band) gets no pole: the layout without meets the
+  // alignment target, so the pole layout is not solved (it aligned to 6.0°, at twice the
+  // stage's time). There were two until pairs in one weak zone had to be closer than 3 h
+  // (kCancelInZone, 2026-12-05); the other pair's route is too light to cut, the layout is the same.
   EXPECT_TRUE(s["levelset"]["poles"].empty());
   ASSERT_TRUE(s["levelset"].contains("poles_not_kept"));
   EXPECT_EQ(s["levelset"]["poles_not_kept"]["tried"].get<bool>(), false);
-  EXPECT_EQ(s["levelset"]["poles_not_kept"]["crowns"].get<int>(), 2);
+  EXPECT_EQ(s["levelset"]["poles_not_kept"]["crowns"].get<int>(), 1);
   // Two boundary 9-gons are cut into quads and a triangle (SplitLargePolygons).
   EXPECT_GE(s["extract"]["split_boundary_polygons"].get<int>(), 2);
   EXPECT_TRUE(s["extract"]["interior_non_quads"].empty()) << s["extract"]["interior_non_quads"];
@@ -102,7 +104,7 @@ TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
   const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();  // TempDir() would wipe it
   std::ifstream svg(std::filesystem::temp_directory_path() /
                     ("pqlayout_test_" + std::string(test->test_suite_name()) + "_" + test->name()) /
-                    "strain2/figures/planarity.svg");
+                    "strain3/figures/planarity.svg");
   ASSERT_TRUE(svg.good());
   const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
   const auto& p = s["planarize"];
@@ -115,10 +117,11 @@ TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
 // The default strain layout: where the strain is weak (52 % of the area) the curvature lines
 // fill in (guidance.fallback = curvature, β = 0.5). The strain field's 38 singularities in its
 // weak zones are gone, the blend keeps the curvature field's four umbilics (index −½); the
-// layout aligns to the strain where it is strong far better than the paper's (measured 1.92°
-// against 5.93°) and the frame after stiffen is half as compliant: 75,400 J against 154,794 J
-// here, ≤ 76,597 J over seven meshes of 11k–112k triangles where the paper's layout was
-// ≥ 115,488 J (benchmarks/RESULTS.md, 2026-12-04). Measured: crossing 30.01°, quads 0.872.
+// layout aligns to the strain where it is strong far better than the paper's (measured 1.91°
+// against 5.93°) and the frame after stiffen is less than half as compliant: 63,961 J against
+// 154,794 J here (75,400 J before guidance.shear_switch), ≤ 80,411 J over seven meshes of
+// 11k–112k triangles where the paper's layout was ≥ 115,488 J (benchmarks/RESULTS.md,
+// 2026-12-04, 2026-12-05). Measured: crossing 30.46°, quads 0.868.
 TEST(GreatCourt, StrainLayoutWithCurvatureFallbackIsTwiceAsStiff) {
   const nlohmann::json s = GreatCourtStages("strain", {}, Stage::kStiffen);
   ExpectCommonTargetsExceptCrossing(s, 3.0);
@@ -179,7 +182,8 @@ TEST(GreatCourt, CurvatureLayoutMeetsIssues4To6WithBranchPoints) {
 // 25.2–30.0°: on this mesh the floor rounds must run, be kept, and hold issue 17's 25°.
 TEST(GreatCourt, StrainLayoutOnTheCoarserMeshHoldsTheFloor) {
   const nlohmann::json l =
-      GreatCourtStages("strain", {"surface.edge_length=1.6", "guidance.fallback=none"}, Stage::kLevelset)["levelset"];
+      GreatCourtStages("strain", {"surface.edge_length=1.6", "guidance.fallback=none", "guidance.shear_switch=paper"},
+                       Stage::kLevelset)["levelset"];
   EXPECT_EQ(l["foldovers"].get<int>(), 0);
   EXPECT_GE(l["min_crossing_angle_deg"].get<double>(), 25.0);
   EXPECT_EQ(l["crossing_rounds_kept"].get<std::string>(), "floor");

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <random>
 
 #include "geometry/differential_operators.h"
@@ -71,6 +73,70 @@ TEST(StrainGuidance, FlatDiskIsRadialWithHalfSquaredGradient) {
   EXPECT_LE(worst_strain_error, 0.02);
   std::cout << "disk: mean radial angle error " << angle_sum / counted << "°, worst |ε_max − ½|∇v|²| / ½|∇v|² "
             << worst_strain_error << "\n";
+}
+
+// A plane tilted along x (z = x / 2) moved vertically by v_z: ε = sym(a ⊗ ∇v) + ½ ∇v ∇vᵀ with
+// a = P e_z along the slope, so a ∇v across the slope gives nearly pure shear, ε_min ≈ −ε_max.
+GuidanceField TiltedPlaneStrain(const std::function<double(double, double)>& v, const std::string& shear_switch,
+                                SurfaceModel** surface) {
+  static std::unique_ptr<SurfaceModel> kept;
+  TriMesh mesh = Generate("plane", 10.0, 10.0, 0.0, 0.5);
+  for (const auto vh : mesh.vertices()) {
+    auto p = mesh.point(vh);
+    p[2] = 0.5 * p[0];
+    mesh.set_point(vh, p);
+  }
+  kept = std::make_unique<SurfaceModel>(mesh);
+  *surface = kept.get();
+  std::vector<double> v_z(kept->num_vertices());
+  for (int i = 0; i < kept->num_vertices(); ++i) v_z[i] = v(kept->position(i).x(), kept->position(i).y());
+  GuidanceOptions options;
+  options.shear_switch = shear_switch;
+  GuidanceField g;
+  EXPECT_TRUE(ComputeStrainGuidance(*kept, v_z, options, &g).ok());
+  return g;
+}
+
+// Uniform pure shear: the paper's weight is 1 everywhere (|ε_max| is the same on every face);
+// e_max is as ambiguous as it gets (|ε_min| = |ε_max| − ½|∇v|²), so the weak weight is 0.
+TEST(StrainGuidance, PureShearHasNoWeightUnlessAsThePaperSays) {
+  SurfaceModel* s = nullptr;
+  const auto v = [](double, double y) { return 0.01 * y; };
+  const GuidanceField paper = TiltedPlaneStrain(v, "paper", &s), weak = TiltedPlaneStrain(v, "weak", &s);
+  for (int f = 0; f < s->num_faces(); ++f) {
+    ASSERT_LT(paper.major[f] * paper.minor[f], 0.0) << "face " << f;
+    EXPECT_NEAR(std::abs(paper.minor[f]) / std::abs(paper.major[f]), 1.0, 0.03);
+    EXPECT_NEAR(paper.weight[f], 1.0, 1e-12);
+    EXPECT_EQ(weak.weight[f], 0.0);
+    EXPECT_EQ(weak.direction[f], paper.direction[f]);  // only the weight differs
+    EXPECT_EQ(weak.magnitude[f], paper.magnitude[f]);
+  }
+}
+
+// Shear whose trace changes sign across the roof (v = 0.01 y + 0.0005 x²): e_max, the
+// eigenvector of largest modulus, swaps by 90° where ε_max = −ε_min. Every face next to the
+// swap has no weak weight, while the paper's weight there is above 0.5; away from it (|ε_max| −
+// |ε_min| ≥ 0.3 of the largest |ε_max|) the two weights agree.
+TEST(StrainGuidance, WeightVanishesWhereTheLargestModulusSwapsDirection) {
+  SurfaceModel* s = nullptr;
+  const auto v = [](double x, double y) { return 0.01 * y + 0.0005 * x * x; };
+  const GuidanceField paper = TiltedPlaneStrain(v, "paper", &s), weak = TiltedPlaneStrain(v, "weak", &s);
+  int swaps = 0, agree = 0;
+  for (int f = 0; f < s->num_faces(); ++f) {
+    EXPECT_LE(weak.weight[f], paper.weight[f] + 1e-15);
+    for (const auto n : s->mesh().ff_range(FaceHandle(f))) {
+      if (AngleBetweenLinesDeg(paper.direction[f], paper.direction[n.idx()]) < 60.0) continue;
+      ++swaps;
+      EXPECT_EQ(weak.weight[f], 0.0) << "face " << f;
+      EXPECT_GT(paper.weight[f], 0.5) << "face " << f;
+    }
+    if (std::abs(paper.major[f]) - std::abs(paper.minor[f]) >= 0.3 * paper.scale) {
+      ++agree;
+      EXPECT_NEAR(weak.weight[f], paper.weight[f], 1e-12);
+    }
+  }
+  EXPECT_GT(swaps, 10);  // the swap line crosses the roof
+  EXPECT_GT(agree, s->num_faces() / 10);
 }
 
 TEST(CurvatureGuidance, CylinderFollowsTheCurvedDirection) {
