@@ -80,15 +80,16 @@ constexpr double kMinSeamWeight = 1.0;   // × h: a seam whose path has less wei
 constexpr double kCancelInZone = 3.0;    // × h: two of one sign in one weak zone closer than this get no seam
 
 // The tips of the seams: the guidance's singularities of index ±½, less pairs, closest
-// first: two closer than kCancelDistance·h, or two of the same sign closer than kCancelInZone·h
-// in one connected weak zone (faces with weight < 0.5). Around such a pair the field turns by a whole turn or none
-// (opposite indices cancel: a wrinkle; equal ones make an index ±1, e.g. a crown that the
-// nearly isotropic field there splits in two), so a single-valued φ crosses it; two seams
-// would only add two branch points (on the L-shaped corpus roof the two halves of the strain
-// crown, 2.3 h apart in its weak zone, made φ fan out of two branch points into 28 triangles).
-// The distance bound: with the strain weights that vanish at shear switches (guidance.h) the
-// wavy corpus roof's weak zones join across the roof, and pairs 4.6–12 h apart were cancelled:
-// one seam instead of four, alignment 22.9° instead of 8.5°.
+// first: two closer than kCancelDistance·h, or two of the same sign closer than
+// kCancelInZone·h in one connected weak zone (faces with weight < 0.5). Around such a pair the
+// field turns by a whole turn or none (opposite indices cancel: a wrinkle; equal ones make an
+// index ±1, e.g. a crown that the nearly isotropic field there splits in two), so a
+// single-valued φ crosses it; two seams would only add two branch points (on the L-shaped
+// corpus roof the two halves of the strain crown, 2.3 h apart in its weak zone, made φ fan out
+// of two branch points into 28 triangles). The distance bound: with the strain weight that
+// vanishes where e_max swaps (guidance.shear_switch, problems/guidance.cc) the wavy corpus
+// roof's weak zones join across the roof, and pairs 4.6–12 h apart were cancelled: one seam
+// instead of four, alignment 22.9° instead of 8.5°.
 // crowns (may be null): where the field turns a whole turn (index +1, or a cancelled pair of
 // +½ at its midpoint), for the poles (levelset_poles.cc).
 std::vector<int> SeamTips(const SurfaceModel& s, const GuidanceField& g, double h, int* cancelled,
