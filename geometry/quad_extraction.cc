@@ -54,6 +54,8 @@ struct SurfaceInfo {
   std::vector<char> vertex_on_boundary, edge_on_boundary;
   const SeamCut* seams = nullptr;
   const SeamTransitions* transitions = nullptr;
+  std::vector<char> vertex_on_rim;  // on a cap's rim: a boundary here, not on the reference
+  const SurfaceModel* reference = nullptr;  // the surface the output lies on, if not the one cut
 };
 
 // Per cut point, the point it stands for: the two sides of every seam identified (a vertex
@@ -269,15 +271,24 @@ Status Extract(const SurfaceModel& surface, const SurfaceInfo& info, const std::
     loop_carriers.push_back(std::move(carriers));
   }
   Polygons polygons = LoopPolygons(cut, loop_points, loop_carriers, &out->stats);
+  if (info.reference != nullptr) {  // the clean-up measures edges and angles where they will lie
+    const ClosestPointQuery& query = info.reference->closest_points();
+    for (size_t v = 0; v < polygons.position.size(); ++v) {
+      QuadMeshVertex origin = polygons.origin[v];
+      int nearest;  // a point on a boundary edge weighs only its two ends, of one loop
+      origin.barycentric.maxCoeff(&nearest);
+      if (info.vertex_on_rim[surface.face_vertices(origin.face)[nearest]]) origin.on_boundary = origin.corner = false;
+      polygons.position[v] = PlacedOnReference(query, origin, polygons.position[v]).point;
+    }
+  }
   CleanUpAndBuild(min_edge_length, pair_boundary_triangles, &polygons, out);
   PlaceCentreVertices(surface, out);
   return Status::Ok();
 }
 
-// The boundary corners of `surface` (turning by more than corner_angle_deg) off the caps'
-// rims (ExtractQuadMesh).
-std::vector<int> CornersOffCapRims(const SurfaceModel& surface, double corner_angle_deg,
-                                   const std::vector<CapHole>& caps, double cap_reach) {
+// The vertices of `surface` on a cap's rim: every vertex of a boundary loop that lies within
+// radius + cap_reach of a cap's centre (ExtractQuadMesh).
+std::vector<char> CapRimVertices(const SurfaceModel& surface, const std::vector<CapHole>& caps, double cap_reach) {
   std::vector<char> on_rim(surface.num_vertices(), 0);
   for (const BoundaryLoop& loop : surface.boundary_loops())
     for (const CapHole& cap : caps)
@@ -285,6 +296,12 @@ std::vector<int> CornersOffCapRims(const SurfaceModel& surface, double corner_an
             return (surface.position(v.idx()) - cap.centre).norm() < cap.radius + cap_reach;
           }))
         for (const VertexHandle v : loop.vertices) on_rim[v.idx()] = 1;
+  return on_rim;
+}
+
+// The boundary corners of `surface` (turning by more than corner_angle_deg) off the rims.
+std::vector<int> CornersOffCapRims(const SurfaceModel& surface, double corner_angle_deg,
+                                   const std::vector<char>& on_rim) {
   std::vector<int> corners;
   for (const int v : surface.BoundaryCorners(corner_angle_deg * M_PI / 180.0))
     if (!on_rim[v]) corners.push_back(v);
@@ -300,26 +317,37 @@ Status CheckFinite(const std::vector<double>& phi, const std::vector<double>& ps
 
 }  // namespace
 
+SurfacePoint PlacedOnReference(const ClosestPointQuery& reference, const QuadMeshVertex& origin,
+                               const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = origin.on_boundary && !origin.corner ? reference.OnBoundary(p).point : p;
+  SurfacePoint on = reference.OnSurface(q);
+  if (origin.on_boundary) on.point = q;
+  return on;
+}
+
 Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
                        double corner_angle_deg, double min_edge_length, ExtractedMesh* out,
-                       bool pair_boundary_triangles, const std::vector<CapHole>& caps, double cap_reach) {
+                       bool pair_boundary_triangles, const std::vector<CapHole>& caps, double cap_reach,
+                       const SurfaceModel* reference) {
   const int nv = surface.num_vertices();
   if (static_cast<int>(phi.size()) != nv || static_cast<int>(psi.size()) != nv)
     return Status::InvalidInput("extract: φ and ψ need one value per reference vertex (" + std::to_string(nv) + ")");
   PQ_RETURN_IF_ERROR(CheckFinite(phi, psi));
   SurfaceInfo info;
-  info.corners = CornersOffCapRims(surface, corner_angle_deg, caps, cap_reach);
+  info.vertex_on_rim = CapRimVertices(surface, caps, cap_reach);
+  info.corners = CornersOffCapRims(surface, corner_angle_deg, info.vertex_on_rim);
   info.vertex_on_boundary.resize(nv);
   for (int v = 0; v < nv; ++v) info.vertex_on_boundary[v] = surface.is_boundary(v);
   info.edge_on_boundary.resize(surface.mesh().n_edges());
   for (const auto e : surface.mesh().edges()) info.edge_on_boundary[e.idx()] = surface.mesh().is_boundary(e);
+  info.reference = reference;
   return Extract(surface, info, phi, psi, min_edge_length, out, pair_boundary_triangles);
 }
 
 Status ExtractQuadMesh(const SurfaceModel& surface, const SeamTransitions& seams, const std::vector<double>& phi_cut,
                        const std::vector<double>& psi_cut, double corner_angle_deg, double min_edge_length,
                        ExtractedMesh* out, bool pair_boundary_triangles, const std::vector<CapHole>& caps,
-                       double cap_reach) {
+                       double cap_reach, const SurfaceModel* reference) {
   if (seams.cut == nullptr) return Status::InvalidInput("extract: seam transitions without a seam cut");
   const SeamCut& seam_cut = *seams.cut;
   const SurfaceModel& cut = seam_cut.cut();
@@ -378,12 +406,15 @@ Status ExtractQuadMesh(const SurfaceModel& surface, const SeamTransitions& seams
   SurfaceInfo info;
   info.seams = &seam_cut;
   info.transitions = &seams;
+  info.reference = reference;
   std::vector<char> is_corner(surface.num_vertices(), 0);
-  for (const int v : CornersOffCapRims(surface, corner_angle_deg, caps, cap_reach)) is_corner[v] = 1;
+  const std::vector<char> on_rim = CapRimVertices(surface, caps, cap_reach);
+  for (const int v : CornersOffCapRims(surface, corner_angle_deg, on_rim)) is_corner[v] = 1;
   info.vertex_on_boundary.resize(nv);
   for (int v = 0; v < nv; ++v) {
     const int original = seam_cut.original_vertex(v);
     info.vertex_on_boundary[v] = surface.is_boundary(original);
+    info.vertex_on_rim.push_back(on_rim[original]);
     if (is_corner[original]) info.corners.push_back(v);
   }
   info.edge_on_boundary.resize(cut.mesh().n_edges());

@@ -40,6 +40,7 @@
 
 #include <Eigen/Core>
 
+#include "geometry/closest_point.h"
 #include "geometry/mesh.h"
 #include "geometry/seams.h"
 #include "base/status.h"
@@ -106,11 +107,16 @@ struct CapHole {
 // a jagged loop of working-mesh edges that a cap face will close: its kinks are no corners (as
 // corners they stay mesh vertices, and a level line ending next to one leaves a short rim
 // edge whose collapse turns a rim quad into a triangle, interior once the cap is closed).
+// reference: where `surface` is a working mesh (remeshed or holed), the surface the output will
+// be moved onto (PlacedOnReference): every vertex is moved there before the clean-up, so that
+// short edges and angles are judged where they will lie — the Reading Room's ring is a polygon
+// on a working mesh, and a boundary vertex moved out onto the ring shortened a 0.21 h edge to
+// 0.198 h after the collapses. Barycentric origins stay on `surface`.
 // InvalidInput on size mismatch or non-finite values.
 Status ExtractQuadMesh(const SurfaceModel& surface, const std::vector<double>& phi, const std::vector<double>& psi,
                        double corner_angle_deg, double min_edge_length, ExtractedMesh* out,
                        bool pair_boundary_triangles = true, const std::vector<CapHole>& caps = {},
-                       double cap_reach = 0.0);
+                       double cap_reach = 0.0, const SurfaceModel* reference = nullptr);
 
 // Transitions across the seams of `cut`, per path p: u₊ = sign[p]·u₋ + offset[p] with u = φ
 // (phi_offset) or ψ (psi_offset), "minus" the side of SeamEdge::minus_face. sign ±1 (shared
@@ -132,7 +138,7 @@ struct SeamTransitions {
 Status ExtractQuadMesh(const SurfaceModel& surface, const SeamTransitions& seams, const std::vector<double>& phi_cut,
                        const std::vector<double>& psi_cut, double corner_angle_deg, double min_edge_length,
                        ExtractedMesh* out, bool pair_boundary_triangles = true, const std::vector<CapHole>& caps = {},
-                       double cap_reach = 0.0);
+                       double cap_reach = 0.0, const SurfaceModel* reference = nullptr);
 constexpr double kSeamTransitionTolerance = 1e-6;
 
 // What the stage reports about an extracted mesh (lengths in metres).
@@ -153,6 +159,12 @@ struct ExtractedMeshMetrics {
   std::vector<std::pair<int, Eigen::Vector3d>> interior_non_quads;
   std::vector<std::pair<int, Eigen::Vector3d>> caps;  // the caps of poles (geometry/cap_fill.h)
 };
+
+// Where an extracted vertex at p lies on `reference`: boundary vertices (corners aside) at the
+// closest point of its boundary, the others at the closest point of the surface; the element
+// is the reference triangle there.
+SurfacePoint PlacedOnReference(const ClosestPointQuery& reference, const QuadMeshVertex& origin,
+                               const Eigen::Vector3d& p);
 
 // Why the extraction's short-edge collapse would not merge the ends of mesh edge (u, v) (a
 // sentence), or null if it would (the edge was made after the collapses, by the boundary

@@ -99,13 +99,10 @@ void OnReference(const SurfaceModel& reference, ExtractedMesh* quads) {
   const ClosestPointQuery& query = reference.closest_points();
   for (const auto v : quads->mesh.vertices()) {
     QuadMeshVertex& origin = quads->origin[v.idx()];
-    Eigen::Vector3d p = ToEigen(quads->mesh.point(v));
-    if (origin.on_boundary && !origin.corner) p = query.OnBoundary(p).point;
-    const SurfacePoint q = query.OnSurface(p);
-    if (!origin.on_boundary) p = q.point;
-    quads->mesh.set_point(v, ToOpenMesh(p));
+    const SurfacePoint q = PlacedOnReference(query, origin, ToEigen(quads->mesh.point(v)));
+    quads->mesh.set_point(v, ToOpenMesh(q.point));
     origin.face = q.element;
-    origin.barycentric = TriangleBarycentric(reference, q.element, p);
+    origin.barycentric = TriangleBarycentric(reference, q.element, q.point);
   }
 }
 
@@ -131,12 +128,14 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
     for (const double b : levelsets.seams.psi_offset) seams.psi_offset.push_back(static_cast<int>(std::lround(b)));
     const SurfaceModel& cut_surface = levelsets.seams.working ? *levelsets.seams.working : surface;
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(cut_surface, seams, levelsets.phi_cut, levelsets.psi_cut, options.corner_angle,
-                                       options.min_edge * h, &quads, true, Caps(levelsets), h));
+                                       options.min_edge * h, &quads, true, Caps(levelsets), h,
+                                       levelsets.seams.working ? &surface : nullptr));
     quads.stats.caps = FillCaps(Caps(levelsets), h, kCapRow * h, &quads);
     if (levelsets.seams.working) OnReference(surface, &quads);
   } else if (levelsets.working) {  // single-valued, solved on a remeshed (or holed) working mesh
     PQ_RETURN_IF_ERROR(ExtractQuadMesh(*levelsets.working, levelsets.phi_working, levelsets.psi_working,
-                                       options.corner_angle, options.min_edge * h, &quads, true, Caps(levelsets), h));
+                                       options.corner_angle, options.min_edge * h, &quads, true, Caps(levelsets), h,
+                                       &surface));
     quads.stats.caps = FillCaps(Caps(levelsets), h, kCapRow * h, &quads);
     OnReference(surface, &quads);
   } else {

@@ -77,32 +77,35 @@ TEST(StrainGuidance, FlatDiskIsRadialWithHalfSquaredGradient) {
 
 // A plane tilted along x (z = x / 2) moved vertically by v_z: ε = sym(a ⊗ ∇v) + ½ ∇v ∇vᵀ with
 // a = P e_z along the slope, so a ∇v across the slope gives nearly pure shear, ε_min ≈ −ε_max.
-GuidanceField TiltedPlaneStrain(const std::function<double(double, double)>& v, const std::string& shear_switch,
-                                SurfaceModel** surface) {
-  static std::unique_ptr<SurfaceModel> kept;
+struct TiltedPlane {
+  std::unique_ptr<SurfaceModel> surface;
+  GuidanceField paper, weak;  // guidance.shear_switch = paper, weak
+};
+TiltedPlane TiltedPlaneStrain(const std::function<double(double, double)>& v) {
   TriMesh mesh = Generate("plane", 10.0, 10.0, 0.0, 0.5);
   for (const auto vh : mesh.vertices()) {
     auto p = mesh.point(vh);
     p[2] = 0.5 * p[0];
     mesh.set_point(vh, p);
   }
-  kept = std::make_unique<SurfaceModel>(mesh);
-  *surface = kept.get();
-  std::vector<double> v_z(kept->num_vertices());
-  for (int i = 0; i < kept->num_vertices(); ++i) v_z[i] = v(kept->position(i).x(), kept->position(i).y());
+  TiltedPlane plane{std::make_unique<SurfaceModel>(mesh), {}, {}};
+  const SurfaceModel& s = *plane.surface;
+  std::vector<double> v_z(s.num_vertices());
+  for (int i = 0; i < s.num_vertices(); ++i) v_z[i] = v(s.position(i).x(), s.position(i).y());
   GuidanceOptions options;
-  options.shear_switch = shear_switch;
-  GuidanceField g;
-  EXPECT_TRUE(ComputeStrainGuidance(*kept, v_z, options, &g).ok());
-  return g;
+  options.shear_switch = "paper";
+  EXPECT_TRUE(ComputeStrainGuidance(s, v_z, options, &plane.paper).ok());
+  options.shear_switch = "weak";
+  EXPECT_TRUE(ComputeStrainGuidance(s, v_z, options, &plane.weak).ok());
+  return plane;
 }
 
 // Uniform pure shear: the paper's weight is 1 everywhere (|ε_max| is the same on every face);
 // e_max is as ambiguous as it gets (|ε_min| = |ε_max| − ½|∇v|²), so the weak weight is 0.
 TEST(StrainGuidance, PureShearHasNoWeightUnlessAsThePaperSays) {
-  SurfaceModel* s = nullptr;
-  const auto v = [](double, double y) { return 0.01 * y; };
-  const GuidanceField paper = TiltedPlaneStrain(v, "paper", &s), weak = TiltedPlaneStrain(v, "weak", &s);
+  const TiltedPlane plane = TiltedPlaneStrain([](double, double y) { return 0.01 * y; });
+  const SurfaceModel* s = plane.surface.get();
+  const GuidanceField &paper = plane.paper, &weak = plane.weak;
   for (int f = 0; f < s->num_faces(); ++f) {
     ASSERT_LT(paper.major[f] * paper.minor[f], 0.0) << "face " << f;
     EXPECT_NEAR(std::abs(paper.minor[f]) / std::abs(paper.major[f]), 1.0, 0.03);
@@ -118,9 +121,9 @@ TEST(StrainGuidance, PureShearHasNoWeightUnlessAsThePaperSays) {
 // swap has no weak weight, while the paper's weight there is above 0.5; away from it (|ε_max| −
 // |ε_min| ≥ 0.3 of the largest |ε_max|) the two weights agree.
 TEST(StrainGuidance, WeightVanishesWhereTheLargestModulusSwapsDirection) {
-  SurfaceModel* s = nullptr;
-  const auto v = [](double x, double y) { return 0.01 * y + 0.0005 * x * x; };
-  const GuidanceField paper = TiltedPlaneStrain(v, "paper", &s), weak = TiltedPlaneStrain(v, "weak", &s);
+  const TiltedPlane plane = TiltedPlaneStrain([](double x, double y) { return 0.01 * y + 0.0005 * x * x; });
+  const SurfaceModel* s = plane.surface.get();
+  const GuidanceField &paper = plane.paper, &weak = plane.weak;
   int swaps = 0, agree = 0;
   for (int f = 0; f < s->num_faces(); ++f) {
     EXPECT_LE(weak.weight[f], paper.weight[f] + 1e-15);
