@@ -10,11 +10,13 @@
 // The domes with strain guidance got a pole each (problems/levelset_poles.cc; alignment 10.8°
 // and 14.8° without); since the curvature fallback the square dome gets two, the circular
 // dome none (its crown is a weak zone the blend fills).
-// The Great Court at 112k reference triangles (surface.edge_length 0.5, issue 19) takes the
-// remeshed working-mesh path the 12k golden run does not: its strain layout once got a seam
-// round the Reading Room (18.6°, quad fraction 0.68) and must meet every target.
+// The Great Court at 44k and 112k reference triangles (surface.edge_length 0.8, 0.5; issue 19)
+// takes the remeshed working-mesh path the 12k golden run does not: its strain layout once got
+// a seam round the Reading Room (18.6°, quad fraction 0.68) and must meet every target, and
+// issue 19's stricter ones (ExpectValidAtThisSize).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <iostream>
 #include <map>
 #include <string>
@@ -106,7 +108,29 @@ const CorpusCase kCases[] = {
     {"great_court_112k", "strain", {}, "great_court.yaml", {"surface.edge_length=0.5"}},
     {"great_court_112k", "curvature", {{"spacing_cv", 0.46}, {"interior_non_quads", 2}},
      "great_court.yaml", {"surface.edge_length=0.5"}},
+    // 44k (issue 19): the curvature layout's shortest edge was 0.198 h at the Reading Room's rim
+    // until short edges were judged on the reference (2026-12-05).
+    {"great_court_44k", "strain", {}, "great_court.yaml", {"surface.edge_length=0.8"}},
+    {"great_court_44k", "curvature", {}, "great_court.yaml", {"surface.edge_length=0.8"}},
 };
+
+// Issue 19's targets for the Great Court at every size, stricter than the corpus': alignment
+// ≤ 6° where weight > 0.5, spacing CV ≤ 0.2, crossing ≥ 30°, no fold-over, quads ≥ 0.85 as
+// extracted, δ ≤ 1e-3 and closeness ≤ 0.02 h after planarisation. One known miss: the 112k
+// curvature layout's ψ spacing CV 0.369 (the branch-point seams' offsets rounded one by one;
+// benchmarks/RESULTS.md, "Diagnosed, not fixed").
+void ExpectValidAtThisSize(const CorpusCase& c, const nlohmann::json& report, double h) {
+  const nlohmann::json& st = report.at("stages");
+  const nlohmann::json& levelset = st.at("levelset");
+  const double cv = std::max(levelset.at("spacing_cv_phi").get<double>(), levelset.at("spacing_cv_psi").get<double>());
+  EXPECT_LE(levelset.at("alignment_rms_deg_weight_above_half").get<double>(), 6.0);
+  EXPECT_LE(cv, c.roof == "great_court_112k" && c.source == "curvature" ? 0.38 : 0.2);
+  EXPECT_GE(levelset.at("min_crossing_angle_deg").get<double>(), 30.0);
+  EXPECT_EQ(levelset.at("foldovers").get<int>(), 0);
+  EXPECT_GE(st.at("extract").at("quad_fraction").get<double>(), 0.85);
+  EXPECT_LE(st.at("planarize").at("planarity_max").get<double>(), 1e-3);
+  EXPECT_LE(st.at("planarize").at("closeness_max").get<double>(), 0.02 * h);
+}
 
 class CorpusTargets : public ::testing::TestWithParam<CorpusCase> {};
 
@@ -142,6 +166,7 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
     else EXPECT_LE(value, known->second) << name;
   }
   EXPECT_EQ(met, targets.at("met").get<int>());
+  if (c.config == "great_court.yaml") ExpectValidAtThisSize(c, report, config.layout.spacing);
   if (c.roof == "dome_circular" && c.source == "strain")  // its triangles sit by the pole's cap
     for (const auto& t : targets.at("list"))
       if (t.at("name") == "interior_non_quads" && !t.at("met").get<bool>())
@@ -172,10 +197,12 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   EXPECT_EQ(stages.at("levelset").at("crossing_rounds_kept") == "floor", floored);
   EXPECT_EQ(stages.at("levelset").at("ceres").contains("floor_round_1"), floored);
   if (pole) EXPECT_EQ(stages.at("extract").at("caps").size(), strain_poles.at(c.roof));
-  if (c.roof == "great_court_112k") EXPECT_TRUE(stages.at("levelset").at("poles").empty());  // no crown
-  if (c.roof == "great_court_112k") {  // solved on a working mesh, no seam round the ring
+  const bool remeshed = c.roof == "great_court_112k" || c.roof == "great_court_44k";
+  if (remeshed) EXPECT_TRUE(stages.at("levelset").at("poles").empty());  // no crown
+  if (remeshed) {  // solved on a working mesh, no seam round the ring
     const nlohmann::json& levelset = report.at("stages").at("levelset");
-    EXPECT_LT(levelset.at("working_mesh_triangles").get<int>(), report.at("stages").at("surface").at("n_faces").get<int>() / 4);
+    // ~12k working triangles whatever the reference (11.8k of 44k, 12k of 112k).
+    EXPECT_LT(levelset.at("working_mesh_triangles").get<int>(), report.at("stages").at("surface").at("n_faces").get<int>() / 3);
     EXPECT_EQ(levelset.at("working_mesh"), "CGAL remeshing (not from the plan: fewer than 200000 triangles)");
     // Strain with the curvature fallback: the blend has the curvature field's four umbilics,
     // so the layout has the curvature layout's five seams (four branch points, one round the
