@@ -78,6 +78,11 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   if (options.source == "strain") PQ_RETURN_IF_ERROR(ComputeStrainGuidance(surface, v_z, options, &g));
   else if (options.source == "curvature") PQ_RETURN_IF_ERROR(ComputeCurvatureGuidance(surface, options, &g));
   else PQ_RETURN_IF_ERROR(ReadGuidanceFile(surface, options, &g));
+  if (options.source == "curvature") {
+    const double h = state->config.layout.spacing;
+    const int swapped = CombCurvatureNet(surface, h * h, &g);
+    LOG(INFO) << "guidance: curvature net combed, " << swapped << " faces follow the other family";
+  }
   const bool fallback = options.fallback == "curvature" && options.source != "curvature";
   double fallback_area = 0.0;
   if (fallback) {

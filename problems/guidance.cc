@@ -5,6 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <queue>
+#include <tuple>
 #include <sstream>
 
 #include "geometry/differential_operators.h"
@@ -52,6 +54,81 @@ std::vector<double> StrainDominance(const GuidanceField& field, const GuidanceOp
 }
 
 }  // namespace
+
+namespace {
+
+// Faces reached along the maximum spanning tree (CombCurvatureNet), each flagged where it
+// takes the other family.
+std::vector<char> CombingFlips(const SurfaceModel& surface, const GuidanceField& field) {
+  const int n = surface.num_faces();
+  std::vector<char> reached(n, 0), flip(n, 0);
+  using Entry = std::tuple<double, int, int>;  // key, −face (ties: lower index first), parent
+  std::vector<int> order(n);
+  for (int f = 0; f < n; ++f) order[f] = f;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return field.weight[a] > field.weight[b]; });
+  const auto chosen = [&](int f) {
+    return flip[f] ? Eigen::Vector3d(surface.face_normal(f).cross(field.direction[f])) : field.direction[f];
+  };
+  for (const int root : order) {
+    if (reached[root]) continue;
+    std::priority_queue<Entry> queue;
+    queue.push({field.weight[root], -root, -1});
+    while (!queue.empty()) {
+      const auto [key, minus_g, parent] = queue.top();
+      queue.pop();
+      const int g = -minus_g;
+      if (reached[g]) continue;
+      reached[g] = 1;
+      if (parent >= 0) {
+        const Eigen::Vector3d from = chosen(parent);
+        const Eigen::Vector3d across = surface.face_normal(g).cross(field.direction[g]);
+        flip[g] = std::abs(from.dot(across)) > std::abs(from.dot(field.direction[g]));
+      }
+      for (const auto h : surface.mesh().ff_range(FaceHandle(g)))
+        if (!reached[h.idx()]) queue.push({std::min(field.weight[g], field.weight[h.idx()]), -h.idx(), g});
+    }
+  }
+  return flip;
+}
+
+// Connected parts of faces with the same flag smaller than `min_area` take the other flag
+// (an umbilic's core, where the net turns within a few faces).
+void MergeSmallParts(const SurfaceModel& surface, double min_area, std::vector<char>* flip) {
+  const int n = surface.num_faces();
+  std::vector<int> part(n, -1);
+  std::vector<std::vector<int>> parts;
+  for (int f = 0; f < n; ++f) {
+    if (part[f] >= 0) continue;
+    parts.push_back({f});
+    part[f] = static_cast<int>(parts.size()) - 1;
+    for (size_t k = 0; k < parts.back().size(); ++k)
+      for (const auto h : surface.mesh().ff_range(FaceHandle(parts.back()[k])))
+        if (part[h.idx()] < 0 && (*flip)[h.idx()] == (*flip)[f]) {
+          part[h.idx()] = part[f];
+          parts.back().push_back(h.idx());
+        }
+  }
+  for (const auto& faces : parts) {
+    double area = 0.0;
+    for (const int f : faces) area += surface.face_area(f);
+    if (area < min_area) for (const int f : faces) (*flip)[f] = !(*flip)[f];
+  }
+}
+
+}  // namespace
+
+int CombCurvatureNet(const SurfaceModel& surface, double min_area, GuidanceField* field) {
+  std::vector<char> flip = CombingFlips(surface, *field);
+  MergeSmallParts(surface, min_area, &flip);
+  int swapped = 0;
+  for (int f = 0; f < surface.num_faces(); ++f) {
+    if (!flip[f] || !(field->weight[f] > 0.0)) continue;  // no alignment there: left as it was
+    field->direction[f] = surface.face_normal(f).cross(field->direction[f]);
+    std::swap(field->major[f], field->minor[f]);
+    ++swapped;
+  }
+  return swapped;
+}
 
 Status ComputeStrainGuidance(const SurfaceModel& surface, const std::vector<double>& v_z,
                              const GuidanceOptions& options, GuidanceField* field) {

@@ -43,6 +43,21 @@ std::vector<double> AlignmentWeights(const std::vector<double>& magnitude, doubl
 Status ComputeStrainGuidance(const SurfaceModel& surface, const std::vector<double>& v_z,
                              const GuidanceOptions& options, GuidanceField* field);
 Status ComputeCurvatureGuidance(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field);
+// The curvature lines form a net: φ may follow either family, ψ then follows the other (the
+// conjugate of a principal direction is the other one). The major direction (κ1 ≥ κ2 by
+// sign) swaps family by 90° wherever κ1 − κ2 changes sign along a line, not at a point — a
+// surface of revolution's meridian and parallel curvatures cross along a parallel (the
+// off-centre opening's ring ridge: radial lines inside, circles outside, 14° alignment) — and
+// no family of level lines can follow that jump. So the net is combed: faces are reached along
+// a maximum spanning tree of the face graph keyed by the weaker weight of each pair (strong
+// regions first, weak lines last), and each takes the family closer to its parent's. Where
+// the major direction is continuous (isolated umbilics, every generic roof) only the faces at
+// an umbilic's core would flip: parts of one choice smaller than min_area (the caller: h²)
+// take the other, so there nothing changes. Faces of weight 0 keep their direction (nothing
+// aligns to it; a nearly umbilic dome is weightless everywhere, and its layout stays as it
+// was). Returns the number of faces whose family was swapped (their major and minor values
+// swapped too).
+int CombCurvatureNet(const SurfaceModel& surface, double min_area, GuidanceField* field);
 Status ReadGuidanceFile(const SurfaceModel& surface, const GuidanceOptions& options, GuidanceField* field);
 
 // The curvature fallback (guidance.fallback = curvature; beyond the paper). The paper aligns

@@ -341,5 +341,65 @@ TEST(PersistentMinima, TwoWellsWithNoiseCountTwice) {
   EXPECT_NEAR(minima[1].persistence, 0.8, 0.05);
 }
 
+// A synthetic field on the flat 10 × 10 m plane: direction(x, y) and weight(x, y) at each face's
+// centroid.
+GuidanceField FlatField(const SurfaceModel& s, const std::function<Eigen::Vector3d(double, double)>& direction,
+                        const std::function<double(double, double)>& weight) {
+  GuidanceField g;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto ids = s.face_vertices(f);
+    const Eigen::Vector3d c = (s.position(ids[0]) + s.position(ids[1]) + s.position(ids[2])) / 3.0;
+    g.direction.push_back(direction(c.x(), c.y()).normalized());
+    g.major.push_back(2.0);
+    g.minor.push_back(1.0);
+    g.magnitude.push_back(weight(c.x(), c.y()));
+    g.weight.push_back(weight(c.x(), c.y()));
+  }
+  return g;
+}
+
+// The major curvature direction swaps by 90° along the line x = 0 (radial inside a ring
+// ridge's parallel, circles outside): combed, every face follows one family, and the swapped
+// faces carry the other principal values.
+TEST(CurvatureGuidance, CombingJoinsTheNetAcrossALineWhereTheFamiliesSwap) {
+  const SurfaceModel s(Generate("plane", 10.0, 10.0, 0.0, 0.5));
+  GuidanceField g = FlatField(
+      s, [](double x, double) { return x < 0.0 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY(); },
+      [](double x, double) { return std::min(1.0, std::abs(x) / 2.0); });
+  const GuidanceField before = g;
+  const int swapped = CombCurvatureNet(s, 1.0, &g);
+  int along_x = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    along_x += std::abs(g.direction[f].x()) > 0.999;
+    EXPECT_NEAR(std::abs(g.direction[f].dot(before.direction[f])), g.major[f] == before.major[f] ? 1.0 : 0.0, 1e-12);
+    EXPECT_EQ(g.weight[f], before.weight[f]);
+  }
+  EXPECT_TRUE(along_x == 0 || along_x == s.num_faces()) << along_x << " of " << s.num_faces();
+  EXPECT_GT(swapped, s.num_faces() / 3);
+  EXPECT_LT(swapped, 2 * s.num_faces() / 3);
+}
+
+// Where the major direction is continuous — a ±½ singularity (d turns by half the polar angle),
+// a constant field — combing changes nothing. At the singularity's core (r < 0.5 m) the
+// directions are noise, as a shape operator's are at an umbilic: there faces would flip, but
+// they are parts smaller than min_area and take their surroundings' family.
+TEST(CurvatureGuidance, CombingLeavesAContinuousNetAlone) {
+  const SurfaceModel s(Generate("plane", 10.0, 10.0, 0.0, 0.5));
+  for (const double index : {0.5, -0.5}) {
+    const auto direction = [&](double x, double y) {
+      const double r = std::hypot(x - 0.2, y - 0.3);
+      const double t = r < 0.5 ? 1e4 * (x * x + 3.0 * y) : index * std::atan2(y - 0.3, x - 0.2);
+      return Eigen::Vector3d(std::cos(t), std::sin(t), 0.0);
+    };
+    const auto weight = [](double x, double y) { return std::min(1.0, std::hypot(x - 0.2, y - 0.3) / 3.0); };
+    GuidanceField merged = FlatField(s, direction, weight), raw = merged;
+    EXPECT_EQ(CombCurvatureNet(s, 1.0, &merged), 0) << "index " << index;
+    EXPECT_GT(CombCurvatureNet(s, 0.0, &raw), 0) << "index " << index;  // the core's faces, unmerged
+  }
+  GuidanceField constant = FlatField(
+      s, [](double, double) { return Eigen::Vector3d(1.0, 2.0, 0.0); }, [](double, double) { return 0.7; });
+  EXPECT_EQ(CombCurvatureNet(s, 1.0, &constant), 0);
+}
+
 }  // namespace
 }  // namespace pqlayout
