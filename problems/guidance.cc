@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <queue>
-#include <tuple>
 #include <sstream>
+#include <tuple>
 
 #include "geometry/differential_operators.h"
 #include "geometry/principal_directions.h"
@@ -52,10 +52,6 @@ std::vector<double> StrainDominance(const GuidanceField& field, const GuidanceOp
     if (field.major[f] * field.minor[f] < 0.0) dominance[f] -= std::abs(field.minor[f]);
   return dominance;
 }
-
-}  // namespace
-
-namespace {
 
 // Faces reached along the maximum spanning tree (CombCurvatureNet), each flagged where it
 // takes the other family.
