@@ -274,7 +274,7 @@ KeyTable::KeyTable(Config* c) {
   auto& st = c->stiffen;
   Number("stiffen.tolerance", &st.tolerance, NonNegative(kMaxLength),
          "how far a vertex may be from the reference surface after stiffening, m, both sides (0: stage off)");
-  Number("stiffen.slide", &st.slide, NonNegative(kMaxLength), "how far a vertex may also slide along the reference, m, per tangent direction (at most ¼ of stiffen.tolerance)");
+  Number("stiffen.slide", &st.slide, NonNegative(kMaxLength), "how far a vertex may also slide along the reference, m, per tangent direction (at most 0.1 h); the slide does not use up stiffen.tolerance");
   Number("stiffen.min_member", &st.min_member, Range{0.0, 1.0, true, true}, "no member shorter than this × its planarised length (nor than 1.1 × the section depth)");
   Integer("stiffen.max_iterations", &st.max_iterations, 0, 100000, "L-BFGS iterations in all, one or two frame solves each");
   Number("stiffen.weights.fairness", &st.weights.fairness, NonNegative(kMaxWeight), "mesh polylines keep their planarised second differences (panel kinks)");

@@ -85,7 +85,8 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   }
   LOG(INFO) << "stiffen: compliance " << report.compliance_before << " → " << report.compliance_after << " J (×"
             << report.compliance_ratio << ") in " << report.iterations << " iterations, " << report.evaluations
-            << " frame solves; normal offset ≤ " << report.offset_max * 1000.0 << " mm, δ max " << report.planarity_max
+            << " frame solves; normal offset ≤ " << report.offset_max * 1000.0 << " mm, slide ≤ "
+            << report.slide_max * 1000.0 << " mm, δ max " << report.planarity_max
             << ", ≤ " << report.closeness_max * 1000.0 << " mm from the reference, kinks mean "
             << report.kink_mean_deg_before << "° → " << report.kink_mean_deg_after << "°, max "
             << report.kink_max_deg_before << "° → " << report.kink_max_deg_after << "°, steel "

@@ -148,7 +148,7 @@ struct StiffenOptions {
   // Court's span), and it takes 26 % (strain grid) to 40 % (curvature grid) off the Great
   // Court's compliance (README, "Stiffen").
   double tolerance = 0.1;
-  double slide = 0.01;        // how far (m) a vertex may also move along the reference (each tangent direction)
+  double slide = 0.1;         // how far (m) a vertex may also move along the reference (each tangent direction; at most 0.1 h)
   double min_member = 0.75;   // no member shorter than this × its planarised length
   int max_iterations = 1000;   // L-BFGS iterations in all (each one or two frame solves)
   StiffenWeights weights;

@@ -45,6 +45,7 @@ nlohmann::json StiffenReport::ToJson() const {
           {"offset_max", offset_max},
           {"offset_mean", offset_mean},
           {"displacement_max", displacement_max},
+          {"slide_max", slide_max},
           {"planarity_max", planarity_max},
           {"closeness_max", closeness_max},
           {"kink_mean_deg_before", kink_mean_deg_before},
@@ -359,7 +360,7 @@ void Measure(const StiffenProblem& P, const ClosestPointQuery& query, const std:
   r->steel_mass_change = last.frame.steel_mass / first.frame.steel_mass - 1.0;
   r->planarity_max = MaxPlanarity(P, x);
   r->normal_offset.assign(x.size(), 0.0);
-  r->closeness_max = r->offset_max = r->offset_mean = r->displacement_max = 0.0;
+  r->closeness_max = r->offset_max = r->offset_mean = r->displacement_max = r->slide_max = 0.0;
   for (size_t v = 0; v < x.size(); ++v) {
     r->closeness_max = std::max(r->closeness_max, query.OnSurface(x[v]).distance);
     const Vec3 normal = P.held[v] ? query.OnSurface(x0[v]).normal : Vec3(P.frames[v].rotation.col(2));
@@ -367,6 +368,7 @@ void Measure(const StiffenProblem& P, const ClosestPointQuery& query, const std:
     r->offset_max = std::max(r->offset_max, std::abs(r->normal_offset[v]));
     r->offset_mean += std::abs(r->normal_offset[v]) / x.size();
     r->displacement_max = std::max(r->displacement_max, (x[v] - x0[v]).norm());
+    r->slide_max = std::max(r->slide_max, (x[v] - x0[v] - r->normal_offset[v] * normal).norm());
   }
   r->min_member_length = std::numeric_limits<double>::infinity();
   for (const auto& [i, j, min_length] : P.members) r->min_member_length = std::min(r->min_member_length, (x[i] - x[j]).norm());

@@ -6,8 +6,12 @@
 //   - planarity: δ ≤ 0.9 × planarize.target_delta on every sub-quad of every face;
 //   - tolerance, hard: each vertex moves in a box of its own frame (two tangents and the
 //     normal of the reference at the planarised vertex's foot point f): ±stiffen.slide along
-//     each tangent, ±S along the normal with S² = t² − (|a₀|+slide)² − (|b₀|+slide)², so
-//     |p − f| ≤ t and the distance to the reference, ≤ |p − f|, never exceeds t = tolerance;
+//     each tangent (at most 0.1 h), ±S along the normal with S = t − 1.5 r, r the largest
+//     rise or fall of the reference off the tangent plane under the box's tangential square
+//     (sampled on a 3 × 3 grid); a point of the box is then within |c| + r ≤ t of the
+//     reference: the slide does not use up t = tolerance (it did while the box was inscribed
+//     in the ball |p − f| ≤ t, which held the slide to ¼ t; a slide of 0.1 m instead of
+//     0.01 m takes a further 16 % off the Great Court's compliance, README "Stiffen");
 //   - boundary vertices (and joints that have one) held: on the reference boundary, corners
 //     fixed; the frame's members and joints unchanged (hinges; while it runs the frame keeps
 //     the start's joints, and a warning says if the final frame's differ);
@@ -57,6 +61,7 @@ struct StiffenReport {
   double compliance_before = 0.0, compliance_after = 0.0, compliance_ratio = 1.0;  // J, J, after/before
   double offset_max = 0.0, offset_mean = 0.0;      // |normal offset| from the planarised mesh, m
   double displacement_max = 0.0;                   // |p − p_planarised|, m
+  double slide_max = 0.0;                          // its largest part along the reference (⊥ the normal), m
   double planarity_max = 0.0;                      // δ after
   double closeness_max = 0.0;                      // distance to the reference after, m
   double kink_mean_deg_before = 0.0, kink_max_deg_before = 0.0;  // angle between neighbouring face normals

@@ -19,12 +19,26 @@ using Vec3 = Eigen::Vector3d;
 constexpr double kMinMemberOfDepth = 1.1;  // members ≥ 1.1 × section depth
 constexpr double kJointOfDepth = 0.9;      // joints ≤ 0.9 × section depth
 constexpr int kMaxStiffenSides = 8;        // larger faces are held where planarize left them
-constexpr double kSlideOfTolerance = 0.25; // the tangential slide is at most this × the tolerance
+constexpr double kSlideOfSpacing = 0.1;    // the tangential slide is at most this × h
+constexpr double kRiseSafety = 1.5;        // the normal room leaves this × the reference's sampled rise
+
+// How far the reference rises or falls off the tangent plane of frame f over the square
+// [a ± s] × [b ± s] of a box: max |n · (surface point − f)| over the square's 3 × 3 grid (on a
+// smooth surface the extreme lies at a corner; a triangle mesh is planar between its vertices).
+double SurfaceRise(const ClosestPointQuery& query, const PointFrame& f, double a, double b, double s) {
+  double rise = 0.0;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j) {
+      const Vec3 p = f.ToWorld(Vec3(a + i * s, b + j * s, 0.0));
+      rise = std::max(rise, std::abs(f.rotation.col(2).dot(query.OnSurface(p).point - f.origin)));
+    }
+  return rise;
+}
 
 // Each vertex's frame (tangents and normal of the reference at the foot point of its
 // planarised position) and box (problems/stiffen.h). Vertices that cannot move are held.
 void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, const GridFrame& frame,
-                    const StiffenOptions& o, StiffenProblem* P, std::vector<Vec3>* q) {
+                    const StiffenOptions& o, double spacing, StiffenProblem* P, std::vector<Vec3>* q) {
   const int n = static_cast<int>(mesh.mesh.n_vertices());
   // A joint (frame node of several vertices) with a vertex on the boundary is held whole.
   std::vector<bool> node_held(frame.model.nodes.size(), false);
@@ -37,7 +51,7 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
       for (const auto v : mesh.mesh.fv_range(f)) node_held[frame.node_of[v.idx()]] = true;
   P->frames.resize(n), P->lower.resize(n), P->upper.resize(n), P->held.assign(n, false), q->resize(n);
   const double t = o.tolerance * (1.0 - 1e-9);
-  const double slide = std::min(o.slide, kSlideOfTolerance * o.tolerance);  // leaves the normal ≥ 0.93 t
+  const double slide = std::min(o.slide, kSlideOfSpacing * spacing);
   for (int v = 0; v < n; ++v) {
     const Vec3 p = ToEigen(mesh.mesh.point(VertexHandle(v)));
     const SurfacePoint foot = query.OnSurface(p);
@@ -47,8 +61,10 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
     f.origin = foot.point;
     f.rotation.col(0) = e1, f.rotation.col(1) = e2, f.rotation.col(2) = normal;
     Vec3& local = (*q)[v] = f.ToLocal(p);
-    const double a = std::abs(local[0]) + slide, b = std::abs(local[1]) + slide;
-    const double normal_room = t * t - a * a - b * b;
+    // A point (a, b, c) of the box lies within |c| + rise of the reference (the surface under
+    // it is within `rise` of the tangent plane), so ±(t − rise) along the normal keeps it
+    // within t however far it slides: the slide does not use up the tolerance.
+    const double normal_room = t - kRiseSafety * SurfaceRise(query, f, local[0], local[1], slide);
     P->held[v] = node_held[frame.node_of[v]] || normal_room <= 0.0;
     if (P->held[v]) {
       f.origin = p, f.rotation.setIdentity(), local.setZero();  // exactly where it is
@@ -59,9 +75,8 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
     // 0.02 h, more than a tight tolerance) starts where it is, on the edge of its box: it may
     // come in, never go farther out. Pulling it in at the start bent the panels it belongs to
     // (δ 0.0016 on the Great Court at t = 5 mm), which no retraction inside the boxes undid.
-    const double s = std::sqrt(normal_room);
-    P->lower[v] = Vec3(local[0] - slide, local[1] - slide, std::min(-s, local[2]));
-    P->upper[v] = Vec3(local[0] + slide, local[1] + slide, std::max(s, local[2]));
+    P->lower[v] = Vec3(local[0] - slide, local[1] - slide, std::min(-normal_room, local[2]));
+    P->upper[v] = Vec3(local[0] + slide, local[1] + slide, std::max(normal_room, local[2]));
   }
 }
 
@@ -74,7 +89,7 @@ void SetUpStiffenProblem(const ClosestPointQuery& query, const ExtractedMesh& me
                          std::vector<Vec3>* q) {
   P->h = spacing;
   P->weights = o.weights;
-  SetUpVariables(query, mesh, frame, o, P, q);
+  SetUpVariables(query, mesh, frame, o, spacing, P, q);
   const PolyMesh& m = mesh.mesh;
   std::vector<Vec3> x0(m.n_vertices());
   for (const auto v : m.vertices()) x0[v.idx()] = ToEigen(m.point(v));

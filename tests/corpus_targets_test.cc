@@ -263,6 +263,7 @@ TEST(FreeEdgeBracing, PaysOnTheBarrelsGablesAfterStiffen) {
   EXPECT_NEAR(stiffen.at("compliance_after").get<double>(),
               bracing.at("compliance_ratio").get<double>() * bracing.at("compliance_unbraced").get<double>(), 1e-6);
   EXPECT_LE(stiffen.at("planarity_max").get<double>(), config.planarize.target_delta);
+  EXPECT_LE(stiffen.at("closeness_max").get<double>(), config.stiffen.tolerance);
 }
 
 INSTANTIATE_TEST_SUITE_P(Roofs, CorpusTargets, ::testing::ValuesIn(kCases),
