@@ -165,7 +165,7 @@ TEST(Stiffen, ANearlyFlatGridRisesByTheTolerance) {
   const ClosestPointQuery query(roof.reference);
   for (const auto v : roof.grid.mesh.vertices()) {
     EXPECT_LE(query.OnSurface(ToEigen(roof.grid.mesh.point(v))).distance, options.tolerance) << v.idx();
-    if (roof.grid.origin[v.idx()].on_boundary) EXPECT_EQ(roof.grid.mesh.point(v), before.point(v)) << v.idx();
+    if (roof.grid.origin[v.idx()].on_boundary) { EXPECT_EQ(roof.grid.mesh.point(v), before.point(v)) << v.idx(); }
   }
   for (const auto f : roof.grid.mesh.faces()) {
     std::vector<Eigen::Vector3d> polygon;
