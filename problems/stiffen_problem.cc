@@ -21,6 +21,7 @@ constexpr double kJointOfDepth = 0.9;      // joints ≤ 0.9 × section depth
 constexpr int kMaxStiffenSides = 8;        // larger faces are held where planarize left them
 constexpr double kSlideOfSpacing = 0.1;    // the tangential slide is at most this × h
 constexpr double kRiseSafety = 1.5;        // the normal room leaves this × the reference's sampled rise
+constexpr int kNarrowings = 5;             // a box past the boundary: slide halved up to 4 times, then none
 
 // How far the reference rises or falls off the tangent plane of frame f over the square
 // [a ± s] × [b ± s] of a box: max |n · (surface point − f)| over the square's 3 × 3 grid (on a
@@ -33,6 +34,18 @@ double SurfaceRise(const ClosestPointQuery& query, const PointFrame& f, double a
       rise = std::max(rise, std::abs(f.rotation.col(2).dot(query.OnSurface(p).point - f.origin)));
     }
   return rise;
+}
+
+// Whether the box corners (a ± s, b ± s, ±room) of frame f all lie within t of the reference,
+// measured exactly (room is 1e-9 t short of it: rounding in the corners is not a miss). Under the surface they do by the rise allowance; a box that reaches past
+// the reference's boundary (a vertex closer to it than the slide) has corners beside the
+// surface, not over it, whose distance the rise does not see.
+bool CornersWithin(const ClosestPointQuery& query, const PointFrame& f, double a, double b, double s, double room, double t) {
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 local(a + (corner & 1 ? s : -s), b + (corner & 2 ? s : -s), corner & 4 ? room : -room);
+    if (!(query.OnSurface(f.ToWorld(local)).distance <= t)) return false;
+  }
+  return true;
 }
 
 // Each vertex's frame (tangents and normal of the reference at the foot point of its
@@ -64,8 +77,14 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
     // A point (a, b, c) of the box lies within |c| + rise of the reference (the surface under
     // it is within `rise` of the tangent plane), so ±(t − rise) along the normal keeps it
     // within t however far it slides: the slide does not use up the tolerance.
-    const double normal_room = t - kRiseSafety * SurfaceRise(query, f, local[0], local[1], slide);
-    P->held[v] = node_held[frame.node_of[v]] || normal_room <= 0.0;
+    double s = slide, normal_room = 0.0;
+    bool within = false;
+    for (int k = 0; k < kNarrowings && !within && !node_held[frame.node_of[v]]; ++k) {
+      if (k > 0) s = k + 1 < kNarrowings ? 0.5 * s : 0.0;  // past the boundary: a narrower slide, at last none
+      normal_room = t - kRiseSafety * SurfaceRise(query, f, local[0], local[1], s);
+      within = normal_room > 0.0 && CornersWithin(query, f, local[0], local[1], s, normal_room, o.tolerance);
+    }
+    P->held[v] = !within;
     if (P->held[v]) {
       f.origin = p, f.rotation.setIdentity(), local.setZero();  // exactly where it is
       P->lower[v] = P->upper[v] = local;
@@ -75,8 +94,8 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
     // 0.02 h, more than a tight tolerance) starts where it is, on the edge of its box: it may
     // come in, never go farther out. Pulling it in at the start bent the panels it belongs to
     // (δ 0.0016 on the Great Court at t = 5 mm), which no retraction inside the boxes undid.
-    P->lower[v] = Vec3(local[0] - slide, local[1] - slide, std::min(-normal_room, local[2]));
-    P->upper[v] = Vec3(local[0] + slide, local[1] + slide, std::max(normal_room, local[2]));
+    P->lower[v] = Vec3(local[0] - s, local[1] - s, std::min(-normal_room, local[2]));
+    P->upper[v] = Vec3(local[0] + s, local[1] + s, std::max(normal_room, local[2]));
   }
 }
 
