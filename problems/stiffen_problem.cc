@@ -37,9 +37,10 @@ double SurfaceRise(const ClosestPointQuery& query, const PointFrame& f, double a
 }
 
 // Whether the box corners (a ± s, b ± s, ±room) of frame f all lie within t of the reference,
-// measured exactly (room is 1e-9 t short of it: rounding in the corners is not a miss). Under the surface they do by the rise allowance; a box that reaches past
-// the reference's boundary (a vertex closer to it than the slide) has corners beside the
-// surface, not over it, whose distance the rise does not see.
+// measured exactly (room is 1e-9 t short of it: rounding in the corners is not a miss). Under
+// the surface they do by the rise allowance; a box that reaches past the reference's boundary
+// (a vertex closer to it than the slide) has corners beside the surface, not over it, whose
+// distance the rise does not see.
 bool CornersWithin(const ClosestPointQuery& query, const PointFrame& f, double a, double b, double s, double room, double t) {
   for (int corner = 0; corner < 8; ++corner) {
     const Vec3 local(a + (corner & 1 ? s : -s), b + (corner & 2 ? s : -s), corner & 4 ? room : -room);
