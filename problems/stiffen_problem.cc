@@ -76,8 +76,9 @@ void SetUpVariables(const ClosestPointQuery& query, const ExtractedMesh& mesh, c
     f.rotation.col(0) = e1, f.rotation.col(1) = e2, f.rotation.col(2) = normal;
     Vec3& local = (*q)[v] = f.ToLocal(p);
     // A point (a, b, c) of the box lies within |c| + rise of the reference (the surface under
-    // it is within `rise` of the tangent plane), so ±(t − rise) along the normal keeps it
-    // within t however far it slides: the slide does not use up the tolerance.
+    // it is within `rise` of the tangent plane), so ±(t − 1.5 rise) along the normal keeps it
+    // within t however far it slides: the slide does not use up the tolerance. The corners
+    // are then checked exactly (CornersWithin) and the slide narrowed where one is beyond t.
     double s = slide, normal_room = 0.0;
     bool within = false;
     for (int k = 0; k < kNarrowings && !within && !node_held[frame.node_of[v]]; ++k) {
