@@ -1,6 +1,8 @@
 // Per-face geometry of the level-set problem (P1 gradients, shape operators, interior edges).
 #include "problems/levelset_internal.h"
 
+#include <algorithm>
+
 #include "geometry/differential_operators.h"
 #include "geometry/principal_directions.h"
 #include "problems/residuals/conjugacy_residual.h"
@@ -55,6 +57,8 @@ std::vector<InteriorEdge> InteriorEdges(const SurfaceModel& s, const LevelSetGeo
     edge.j = mesh.to_vertex_handle(h).idx();
     edge.k = mesh.to_vertex_handle(mesh.next_halfedge_handle(h)).idx();
     edge.l = mesh.to_vertex_handle(mesh.next_halfedge_handle(o)).idx();
+    edge.f = f;
+    edge.g = g;
     edge.Gf = OrderedBasis(geo, s, f, {edge.i, edge.j, edge.k});
     edge.Gg = OrderedBasis(geo, s, g, {edge.i, edge.j, edge.l});
     edge.area = (s.face_area(f) + s.face_area(g)) / 3.0;
@@ -64,6 +68,12 @@ std::vector<InteriorEdge> InteriorEdges(const SurfaceModel& s, const LevelSetGeo
   return edges;
 }
 
+std::vector<InteriorEdge> SmoothedEdges(const std::vector<InteriorEdge>& edges, const GuidanceField& g, double max_weight) {
+  std::vector<InteriorEdge> smoothed;
+  for (const InteriorEdge& e : edges)
+    if (std::min(g.weight[e.f], g.weight[e.g]) <= max_weight) smoothed.push_back(e);
+  return smoothed;
+}
 
 std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeometry& geo, const SeamCut& cut) {
   std::vector<SeamEdgeTerm> terms;

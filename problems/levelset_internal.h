@@ -34,6 +34,7 @@ struct LevelSetGeometry {
 // An interior edge (i, j) between face f (third vertex k) and face g (third vertex l).
 struct InteriorEdge {
   int i, j, k, l;
+  int f, g;
   Eigen::Matrix3d Gf, Gg;  // basis gradients in the order (i, j, k) and (i, j, l)
   double area, distance;
 };
@@ -65,6 +66,9 @@ LevelSetGeometry Precompute(const SurfaceModel& surface);
 Eigen::Vector3d Gradient(const LevelSetGeometry& geo, const SurfaceModel& s, int f, const std::vector<double>& u);
 Eigen::Matrix3d OrderedBasis(const LevelSetGeometry& geo, const SurfaceModel& s, int f, const std::array<int, 3>& order);
 std::vector<InteriorEdge> InteriorEdges(const SurfaceModel& s, const LevelSetGeometry& geo);
+// The edges the smoothness term acts on: those with a face whose guidance weight is ≤
+// max_weight (levelset.smoothness_max_guidance; ≥ 1: every edge).
+std::vector<InteriorEdge> SmoothedEdges(const std::vector<InteriorEdge>& edges, const GuidanceField& g, double max_weight);
 std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeometry& geo, const SeamCut& cut);
 
 // levelset_initial.cc

@@ -128,7 +128,7 @@ class LevelSetProblem {
 
   const SurfaceModel& s_;
   const LevelSetGeometry& geo_;
-  const std::vector<InteriorEdge>& edges_;
+  const std::vector<InteriorEdge> edges_;  // those the smoothness term acts on (SmoothedEdges)
   const GuidanceField& g_;
   const LevelsetOptions& options_;
   const LevelsetWeights& w_;
@@ -149,7 +149,7 @@ LevelSetProblem::LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& 
                                  const std::vector<InteriorEdge>& edges, const GuidanceField& g,
                                  const LevelsetOptions& options, double h, LevelSetSeams* seams,
                                  std::vector<SeamEdgeTerm> seam_terms, LevelSetSolution* solution)
-    : s_(s), geo_(geo), edges_(edges), g_(g), options_(options), w_(options.weights), h_(h),
+    : s_(s), geo_(geo), edges_(SmoothedEdges(edges, g, options.smoothness_max_guidance)), g_(g), options_(options), w_(options.weights), h_(h),
       min_angle_(options.min_angle / kDegrees), seams_(seams), seam_terms_(std::move(seam_terms)),
       solution_(solution), phi_(solution->phi), psi_(solution->psi), phi_chart_{&phi_, {}}, psi_chart_{&psi_, {}},
       boost_(s.num_faces(), 1.0), hinge_angle_(min_angle_) {

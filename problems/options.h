@@ -101,6 +101,11 @@ struct LevelsetWeights {
 struct LevelsetOptions {
   LevelsetWeights weights;
   double min_angle = 30.0;  // minimum crossing angle of the two families, degrees
+  // The smoothness term acts on interior edges with a face whose guidance weight is ≤ this
+  // (1: every edge, the default; 0.5: only where the guidance leaves φ's direction open, level
+  // sets ~1.3–1.6× faster, but the Great Court's curvature layout then crosses at 29.4°;
+  // benchmarks/RESULTS.md, "Where the level sets' time goes").
+  double smoothness_max_guidance = 1.0;
   int max_iterations = 50;    // Ceres iterations of the φ solve and of the ψ solve
   int joint_iterations = 300; // Ceres iterations of the final joint solve, at most (0: none; stall stop past 100)
   int crossing_rounds = 10;   // local re-solves raising transversality where the crossing is below min_angle, at most (0: none); floor rounds too where they fail

@@ -58,6 +58,7 @@ TEST(Config, WrongTypeAndRange) {
   ExpectError("layout:\n  spacing: [1, 2]\n", {}, "layout.spacing: expected a number, got a list");
   ExpectError("layout: 3\n", {}, "cfg.yaml:1: layout: is a section, expected a mapping of its keys");
   ExpectError("guidance:\n  threshold: 1.5\n", {}, "guidance.threshold: must be in [0, 1] (got 1.5)");
+  ExpectError("levelset:\n  smoothness_max_guidance: 1.01\n", {}, "levelset.smoothness_max_guidance: must be in [0, 1] (got 1.01)");
   ExpectError("guidance:\n  source: strian\n", {}, "guidance.source: unknown value 'strian' (expected strain | curvature | file)");
   ExpectError("levelset:\n  max_iterations: 2.5\n", {}, "levelset.max_iterations: expected an integer");
   ExpectError("analysis:\n  export_calculix: maybe\n", {}, "analysis.export_calculix: expected true or false");
@@ -72,6 +73,10 @@ TEST(Config, SetOverridesTheFile) {
   ASSERT_TRUE(Parse("layout:\n  spacing: 2\n", &c, {"layout.spacing=1.5", "levelset.weights.conjugacy=0"}).ok());
   EXPECT_EQ(c.layout.spacing, 1.5);
   EXPECT_EQ(c.levelset.weights.conjugacy, 0.0);
+  // Both ends of a closed range are values (levelset.smoothness_max_guidance: 0 and its default 1).
+  for (const char* value : {"levelset.smoothness_max_guidance=0", "levelset.smoothness_max_guidance=1"})
+    ASSERT_TRUE(Parse("", &c, {value}).ok()) << value;
+  EXPECT_EQ(c.levelset.smoothness_max_guidance, 1.0);
   // The last --set of a key wins.
   ASSERT_TRUE(Parse("", &c, {"layout.spacing=1.5", "layout.spacing=4"}).ok());
   EXPECT_EQ(c.layout.spacing, 4.0);

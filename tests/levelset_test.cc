@@ -2,6 +2,7 @@
 // translational surface z = f(x) + g(y), whose parameter lines are conjugate.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -9,6 +10,7 @@
 #include "geometry/surface_generators.h"
 #include "pipeline/config.h"
 #include "problems/levelset.h"
+#include "problems/levelset_internal.h"
 #include "pipeline/pipeline.h"
 #include "tests/test_guidance.h"
 #include "tests/test_meshes.h"
@@ -48,6 +50,34 @@ TEST(LevelSets, FlatSquareWithConstantGuidanceGivesStraightEvenLines) {
   // φ = ±y / h + c: one level line every h.
   const Eigen::Vector3d grad = FaceGradient(s, 0, solution.phi);
   EXPECT_NEAR(grad.norm() * 1.5, 1.0, 1e-3);
+}
+
+// levelset.smoothness_max_guidance: the smoothness term acts on the edges with a face of
+// guidance weight ≤ it. Left half of a square unguided (weight 0), right half guided (1): at
+// 0.5 the kept edges are exactly those touching the left half, at 1 (the default) every one.
+TEST(LevelSets, SmoothnessActsOnlyWhereTheGuidanceIsWeak) {
+  const SurfaceModel s(Plane(12.0, 1.0));
+  GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d&) { return Eigen::Vector3d::UnitX(); });
+  const levelset_internal::LevelSetGeometry geo = levelset_internal::Precompute(s);
+  for (int f = 0; f < s.num_faces(); ++f) g.weight[f] = geo.centroid[f].x() < 0.0 ? 0.0 : 1.0;
+  const auto edges = levelset_internal::InteriorEdges(s, geo);
+  const auto all = levelset_internal::SmoothedEdges(edges, g, 1.0);
+  const auto weak = levelset_internal::SmoothedEdges(edges, g, 0.5);
+  EXPECT_EQ(LevelsetOptions().smoothness_max_guidance, 1.0);  // the default smooths every edge
+  EXPECT_EQ(all.size(), edges.size());
+  int touching_weak = 0;
+  for (const auto& e : edges) touching_weak += g.weight[e.f] == 0.0 || g.weight[e.g] == 0.0;
+  EXPECT_EQ(static_cast<int>(weak.size()), touching_weak);
+  for (const auto& e : weak) EXPECT_TRUE(g.weight[e.f] == 0.0 || g.weight[e.g] == 0.0);
+  // Roughly half the edges on either side of the middle.
+  EXPECT_GT(weak.size(), edges.size() / 3);
+  EXPECT_LT(weak.size(), 2 * edges.size() / 3);
+  // The faces of each edge are the ones across it.
+  for (const auto& e : edges) {
+    const auto f = s.face_vertices(e.f), h = s.face_vertices(e.g);
+    EXPECT_NE(std::find(f.begin(), f.end(), e.k), f.end());
+    EXPECT_NE(std::find(h.begin(), h.end(), e.l), h.end());
+  }
 }
 
 // A reference much finer than h/2 is solved on a remeshed working mesh and interpolated back:
