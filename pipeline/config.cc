@@ -232,7 +232,7 @@ KeyTable::KeyTable(Config* c) {
   Integer("levelset.crossing_rounds", &c->levelset.crossing_rounds, 0, 100,
           "local re-solves after it that raise transversality on the faces still crossing below levelset.min_angle, "
           "at most (0: none; they also end after 3 rounds in a row that do not reach the best state); if they "
-          "leave a fold-over or a face more than 5° below min_angle, as many floor rounds (a barrier under the "
+          "leave a fold-over or a face below min_angle, as many floor rounds (a barrier under the "
           "worst face) and again crossing rounds over that floor, and the better end is kept");
   Bool("levelset.seams", &c->levelset.seams,
        "cut seams from the guidance's ±½ singularities and from holes to the boundary; φ, ψ jump by whole levels "
