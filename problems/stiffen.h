@@ -11,7 +11,7 @@
 //     (sampled on a 3 × 3 grid); a point of the box is then within |c| + r ≤ t of the
 //     reference. The box's eight corners are also measured exactly: one beyond t (a box that
 //     reaches past the reference's boundary, where no rise sees it) halves the slide, up to
-//     four times, then none. The slide does not use up t = tolerance (it did while the box was inscribed
+//     three times (full, ½, ¼, ⅛), then none. The slide does not use up t = tolerance (it did while the box was inscribed
 //     in the ball |p − f| ≤ t, which held the slide to ¼ t; a slide of 0.1 m instead of
 //     0.01 m takes a further 16 % off the Great Court's compliance, README "Stiffen");
 //   - boundary vertices (and joints that have one) held: on the reference boundary, corners

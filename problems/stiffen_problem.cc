@@ -21,7 +21,7 @@ constexpr double kJointOfDepth = 0.9;      // joints ≤ 0.9 × section depth
 constexpr int kMaxStiffenSides = 8;        // larger faces are held where planarize left them
 constexpr double kSlideOfSpacing = 0.1;    // the tangential slide is at most this × h
 constexpr double kRiseSafety = 1.5;        // the normal room leaves this × the reference's sampled rise
-constexpr int kNarrowings = 5;             // a box past the boundary: slide halved up to 4 times, then none
+constexpr int kNarrowings = 5;             // a box past the boundary: slide, ½, ¼, ⅛ of it, then none
 
 // How far the reference rises or falls off the tangent plane of frame f over the square
 // [a ± s] × [b ± s] of a box: max |n · (surface point − f)| over the square's 3 × 3 grid (on a
