@@ -2,7 +2,7 @@
 // 2D constrained Delaunay refinement (Ruppert/Shewchuk, Delaunay_mesher_2); above 200k
 // expected triangles the interior is first seeded with a triangular lattice of 0.68 ×
 // edge_length, so that the refinement only meshes the band along the boundary (968k-triangle
-// Great Court plan: 10.6 s → ~1 s). Every loop vertex
+// Great Court plan: 10.6 s → 1.6 s). Every loop vertex
 // is kept, boundary points on axis-parallel segments are snapped exactly onto the segment's
 // line, and boundary points of circular loops exactly onto the circle. The built-in surfaces
 // (surface_generators.h) lift this mesh to z = f(x, y).

@@ -49,7 +49,7 @@ TEST(PlanarDomainMesher, ALargeDomainIsSeededWithALatticeAndKeepsTheRefinementsB
   std::nth_element(minima.begin(), minima.begin() + minima.size() / 2, minima.end());
   EXPECT_GT(minima[minima.size() / 2], 59.0 * M_PI / 180.0);
   // As many triangles as a lattice of 0.68 edge over the area, within the boundary band.
-  const double area = 100.0 - M_PI * (1.0 - 1e-3);
+  const double area = 100.0 - M_PI;
   const double lattice = area / (std::sqrt(3.0) / 4.0 * std::pow(0.68 * edge, 2));
   EXPECT_NEAR(static_cast<double>(t.triangles.size()), lattice, 0.03 * lattice);
   // Every loop vertex is a vertex of the mesh, boundary points on the circle exactly on it.
