@@ -54,8 +54,9 @@ constexpr double kLatticeSpacing = 0.68;
 // most edge_length long, so every point stays ≥ 0.87 edge_length from every constraint and the
 // refinement meshes the band between them (at 0.75 the band's triangles along the Great
 // Court's steep north edge came out at 18.3° in space after lifting, against 23.2° from the
-// refinement alone; at 1.0, 23.6°). SeedLattice's buckets assume it is at most 1.
+// refinement alone; at 1.0, 23.6°).
 constexpr double kLatticeClearance = 1.0;
+static_assert(kLatticeClearance <= 1.0, "SeedLattice searches the 3 × 3 buckets of one edge_length round a point");
 
 // The polyline constraint holding the pre-split pieces of one loop segment, which is named by
 // its loop and the index of its first polygon vertex.
@@ -79,6 +80,11 @@ double DomainArea(const std::vector<DomainLoop>& loops) {
   double area = std::abs(SignedArea(loops[0].polygon));
   for (size_t i = 1; i < loops.size(); ++i) area -= std::abs(SignedArea(loops[i].polygon));
   return area;
+}
+
+// About how many triangles the size criterion gives the domain.
+double ExpectedTriangles(const std::vector<DomainLoop>& loops, double edge_length) {
+  return kTrianglesPerSquareEdge * DomainArea(loops) / (edge_length * edge_length);
 }
 
 Status ValidateLoops(const std::vector<DomainLoop>& loops, double edge_length) {
@@ -109,8 +115,7 @@ Status ValidateLoops(const std::vector<DomainLoop>& loops, double edge_length) {
                                   " needs a positive finite radius");
     }
   }
-  const double expected_triangles =
-      kTrianglesPerSquareEdge * DomainArea(loops) / (edge_length * edge_length);
+  const double expected_triangles = ExpectedTriangles(loops, edge_length);
   if (expected_triangles > kMaxTriangles) {
     // Formatted as a double: the count can exceed any integer type (or be inf).
     std::ostringstream message;
@@ -183,9 +188,8 @@ std::unordered_map<CdtFace, int> NestingLevels(const Cdt& cdt, std::vector<CdtFa
 }
 
 // One point inside each hole (an even nesting level above 0): the centroid of its first face.
-std::vector<Point> HoleSeeds(const Cdt& cdt) {
-  std::vector<CdtFace> first_faces;
-  const std::unordered_map<CdtFace, int> nesting_level = NestingLevels(cdt, &first_faces);
+std::vector<Point> HoleSeeds(const Cdt& cdt, const std::unordered_map<CdtFace, int>& nesting_level,
+                             const std::vector<CdtFace>& first_faces) {
   std::vector<Point> seeds;
   for (const CdtFace face : first_faces) {
     const int level = nesting_level.at(face);
@@ -196,10 +200,10 @@ std::vector<Point> HoleSeeds(const Cdt& cdt) {
 
 // A triangular lattice of spacing kLatticeSpacing × edge_length over the domain's interior,
 // kept kLatticeClearance × edge_length from every boundary vertex, inserted before the
-// refinement (see kLatticeAbove). Call with only the loop constraints in cdt.
-void SeedLattice(const std::vector<DomainLoop>& loops, double edge_length, Cdt* cdt) {
-  std::vector<CdtFace> first_faces;
-  const std::unordered_map<CdtFace, int> nesting_level = NestingLevels(*cdt, &first_faces);
+// refinement (see kLatticeAbove). Call with only the loop constraints in cdt, and their
+// NestingLevels.
+void SeedLattice(const std::vector<DomainLoop>& loops, double edge_length,
+                 const std::unordered_map<CdtFace, int>& nesting_level, Cdt* cdt) {
   // The boundary vertices bucketed by cells one edge_length wide.
   const double cell = edge_length, clearance = kLatticeClearance * edge_length;
   const auto key = [cell](double x, double y) {
@@ -294,9 +298,10 @@ Status MeshPlanarDomain(const std::vector<DomainLoop>& loops, double edge_length
   PQ_RETURN_IF_ERROR(ValidateLoops(loops, edge_length));
   Cdt cdt;
   const std::vector<LoopSegment> segments = InsertLoopConstraints(loops, edge_length, &cdt);
-  const std::vector<Point> seeds = HoleSeeds(cdt);
-  if (kTrianglesPerSquareEdge * DomainArea(loops) / (edge_length * edge_length) > kLatticeAbove)
-    SeedLattice(loops, edge_length, &cdt);
+  std::vector<CdtFace> first_faces;
+  const std::unordered_map<CdtFace, int> nesting_level = NestingLevels(cdt, &first_faces);
+  const std::vector<Point> seeds = HoleSeeds(cdt, nesting_level, first_faces);
+  if (ExpectedTriangles(loops, edge_length) > kLatticeAbove) SeedLattice(loops, edge_length, nesting_level, &cdt);
   RefineDomain(seeds, edge_length, &cdt);
   std::unordered_map<CdtVertex, int> vertex_index;
   ExtractDomain(cdt, &vertex_index, out);
