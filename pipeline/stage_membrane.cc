@@ -32,6 +32,8 @@ Status RunMembraneStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
               {"relative_residual", solution.relative_residual},
               {"assemble_seconds", solution.assemble_seconds},
               {"factor_seconds", solution.factor_seconds},
+              {"ordering", solution.ordering},
+              {"factor_flops", solution.factor_flops},
               {"solve_seconds", solution.solve_seconds}};
   LOG(INFO) << "membrane: " << solution.n_unknowns << " unknowns, " << solution.n_dirichlet
             << " Dirichlet vertices; max |v_z| " << max_abs * 1000.0 << " mm (factor "

@@ -6,6 +6,7 @@
 // three) are Dirichlet (v_z = 0); `free` ones are Neumann (natural).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "geometry/surface_model.h"
@@ -20,6 +21,8 @@ struct MembraneSolution {
   int n_unknowns = 0;             // size of the SPD system
   double relative_residual = 0.0; // ‖K v − f‖ / ‖f‖ over the unknowns
   double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0;
+  std::string ordering;           // the factor's fill-reducing ordering: "CHOLMOD" or "nested dissection"
+  double factor_flops = 0.0;      // of the Cholesky factorisation (CHOLMOD's count)
 };
 
 // InvalidInput if a connected component of the surface has no Dirichlet vertex (the

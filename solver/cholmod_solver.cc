@@ -15,6 +15,8 @@ struct CholmodSolver::Impl {
   cholmod_common common;
   cholmod_factor* factor = nullptr;
   std::vector<int> pattern_outer, pattern_inner;  // sparsity pattern the factor was analysed for
+  std::vector<int> ordering;                      // SetOrdering's, or empty
+  double lnz = 0.0, flops = 0.0;                  // of the last analysis
   Impl() {
     cholmod_start(&common);
     // One thread (the default): simplicial LLᵀ, CHOLMOD's own loops, no BLAS, so the factor
@@ -38,6 +40,38 @@ CholmodSolver::~CholmodSolver() = default;
 
 bool CholmodSolver::factorized() const { return impl_->factor != nullptr; }
 bool CholmodSolver::is_supernodal() const { return impl_->factor && impl_->factor->is_super; }
+double CholmodSolver::factor_nonzeros() const { return impl_->lnz; }
+double CholmodSolver::factor_flops() const { return impl_->flops; }
+void CholmodSolver::SetOrdering(std::vector<int> perm) { impl_->ordering = std::move(perm); }
+
+// The symbolic analysis of A (n rows) into impl_->factor: CHOLMOD's own ordering, or the one
+// given by SetOrdering (then alone; CHOLMOD postorders its elimination tree, which keeps the fill).
+Status CholmodSolver::Analyze(cholmod_sparse* A, long n) {
+  cholmod_common* c = &impl_->common;
+  const std::vector<int>& perm = impl_->ordering;
+  if (perm.empty()) {
+    impl_->factor = cholmod_analyze(A, c);
+  } else {
+    std::vector<char> seen(n, 0);
+    bool permutation = static_cast<long>(perm.size()) == n;
+    for (size_t k = 0; permutation && k < perm.size(); ++k) {
+      permutation = perm[k] >= 0 && perm[k] < n && !seen[perm[k]];
+      if (permutation) seen[perm[k]] = 1;
+    }
+    if (!permutation)
+      return Status::InvalidInput("the ordering given is not a permutation of the matrix's " + std::to_string(n) +
+                                  " rows");
+    const int methods = c->nmethods, method = c->method[0].ordering;
+    c->nmethods = 1;
+    c->method[0].ordering = CHOLMOD_GIVEN;
+    impl_->factor = cholmod_analyze_p(A, const_cast<int*>(perm.data()), nullptr, 0, c);
+    c->nmethods = methods;
+    c->method[0].ordering = method;
+  }
+  impl_->lnz = c->lnz;
+  impl_->flops = c->fl;
+  return Status::Ok();
+}
 
 Status CholmodSolver::Factorize(const Eigen::SparseMatrix<double>& A_in, bool reuse_analysis) {
   // The previous factor's symbolic analysis (ordering, elimination tree) is kept only for
@@ -90,7 +124,7 @@ Status CholmodSolver::Factorize(const Eigen::SparseMatrix<double>& A_in, bool re
     impl_->factor = previous;
     previous = nullptr;
   } else {
-    impl_->factor = cholmod_analyze(&view, c);
+    PQ_RETURN_IF_ERROR(Analyze(&view, A.rows()));
     impl_->pattern_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
     impl_->pattern_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
   }

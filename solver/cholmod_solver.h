@@ -9,11 +9,14 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
 #include "base/status.h"
+
+struct cholmod_sparse_struct;  // cholmod.h
 
 namespace pqlayout {
 
@@ -31,6 +34,11 @@ class CholmodSolver {
   // reducing ordering), and only the numeric factorisation is redone (stiffen's iterations).
   Status Factorize(const Eigen::SparseMatrix<double>& A, bool reuse_analysis = false);
 
+  // The fill-reducing ordering of the next analyses (perm[k] = the row eliminated k-th, e.g.
+  // NestedDissectionOrdering); empty (the default): CHOLMOD's own choice (AMD, or METIS where
+  // AMD's factor would be dense). Factorize refuses a perm that is not a permutation of A's rows.
+  void SetOrdering(std::vector<int> perm);
+
   // Solves A x = b with the last successful factorisation (b: n by k).
   Status Solve(const Eigen::MatrixXd& b, Eigen::MatrixXd* x) const;
   Status Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const;
@@ -43,8 +51,12 @@ class CholmodSolver {
   int failed_row() const { return failed_row_; }
   // Reciprocal condition number estimate of the last factorisation (CHOLMOD's rcond).
   double rcond() const { return rcond_; }
+  // The last analysis's nonzeros in L and floating-point operations of the factorisation.
+  double factor_nonzeros() const;
+  double factor_flops() const;
 
  private:
+  Status Analyze(cholmod_sparse_struct* A, long n);
   struct Impl;
   std::unique_ptr<Impl> impl_;  // also the pattern of the analysed matrix
   int rows_ = 0;
