@@ -46,6 +46,12 @@ Status RunStructuralChecks(const GridFrame& frame, const FrameResult& r, const A
             << " MPa); deflection max " << c->deflection_max * 1000.0 << " mm, span / deflection "
             << (c->deflection_max > 0.0 ? c->span / c->deflection_max : 0.0);
   if (eta_max > 1.0) LOG(WARNING) << "analyze: members over utilisation 1 (η max " << eta_max << "): see figures/utilisation.svg";
+  // λ₁ < 1: the linear estimate, an upper bound, already says the frame buckles before it
+  // carries its load; as loud as a member over η = 1 (a demanding engineer's first question).
+  if (c->buckling_run && c->buckling.buckles && c->buckling.factors.front() < 1.0)
+    LOG(WARNING) << "analyze: the frame buckles at " << c->buckling.factors.front()
+                 << " × its load (linear buckling factor below 1, an upper bound): not stable under this load with "
+                    "this section; see figures/buckling.svg (a deeper section: analysis.section; shorter members: layout.spacing)";
   return Status::Ok();
 }
 

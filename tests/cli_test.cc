@@ -218,6 +218,34 @@ TEST(Cli, BadInputGivesOneLineExitTwoAndNoOutput) {
   EXPECT_EQ(CountLines(unknown.err), 1) << unknown.err;
 }
 
+// λ₁ < 1 (the frame buckles before it carries its load) is a warning in report.json, λ₁ > 1 is
+// not. The frame's load (self-weight and panels) scaled by 1e-2 and 1e2 (λ₁ ≈ 11 unscaled);
+// curvature guidance, so that the layout does not depend on the load.
+TEST(Cli, ABucklingFactorBelowOneIsAWarningInTheReport) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "dome.yaml",
+                     "surface:\n  generator: dome\n  width: 18\n  depth: 15\n  rise: 4\n  edge_length: 1.0\n"
+                     "layout:\n  spacing: 3.0\nguidance:\n  source: curvature\n");
+  double factor[2] = {0.0, 0.0};
+  const char* loads[2] = {"--set analysis.gravity=0.0981 --set analysis.panel_load=10",
+                          "--set analysis.gravity=981 --set analysis.panel_load=100000"};
+  for (int k = 0; k < 2; ++k) {
+    const std::string out = k == 0 ? "light" : "heavy";
+    const Result r = RunPqlayout(dir, "run dome.yaml -q --out " + out + " " + loads[k]);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto report = ReadReport(dir + "/" + out);
+    ASSERT_TRUE(report["stages"]["analyze"]["buckling_factor"].is_number()) << report["stages"]["analyze"];
+    factor[k] = report["stages"]["analyze"]["buckling_factor"].get<double>();
+    bool warned = false;
+    for (const auto& w : report["warnings"]) warned |= w.get<std::string>().rfind("analyze: the frame buckles at ", 0) == 0;
+    EXPECT_EQ(warned, factor[k] < 1.0) << loads[k] << ": λ1 " << factor[k] << " " << report["warnings"];
+  }
+  EXPECT_GT(factor[0], 1.0);
+  EXPECT_LT(factor[1], 1.0);
+  // λ₁ ∝ 1/load on one layout (stiffen, minimising a compliance ∝ load², may end a step apart).
+  EXPECT_NEAR(factor[0] / factor[1], 1e4, 1e3);
+}
+
 TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
   const auto dir = testing::TempDir();
   testing::WriteFile(dir, "dome.yaml",
