@@ -107,6 +107,8 @@ th{background:#f0f0f0}td.num{text-align:right;font-variant-numeric:tabular-nums}
 figure{margin:0}figure svg{display:block;width:100%;height:auto;border:1px solid #ddd}
 figcaption{color:#555;margin-top:0.3em;font-size:0.92em}
 .missing{border:2px dashed #c33;color:#c33;padding:2em;text-align:center}
+.checks{border-left:5px solid #c33;background:#fdf3f1;padding:0.3em 1em;margin:0.8em 0}
+.checks.ok{border-color:#3a8a3a;background:#f1f8f1}.checks ul{margin:0.2em 0 0.5em}
 )";
 
 // After load: measure every figure (see report_html.h) into its data-check attribute.
@@ -218,6 +220,39 @@ std::string Row(const std::string& key, const std::string& value) {
   return "<tr><td>" + Escape(key) + "</td><td>" + Escape(value) + "</td></tr>\n";
 }
 
+
+// What the run says about itself, first: report.json's targets (met, and each miss with its
+// cause) and its warnings (buckling, utilisation, crossings, ...); green when nothing is missed
+// or warned about, red otherwise.
+std::string Checks(const nlohmann::json& report) {
+  const nlohmann::json& targets = At(report, {"targets", "list"});
+  const nlohmann::json& warnings = At(report, {"warnings"});
+  const size_t n_warnings = warnings.is_array() ? warnings.size() : 0;
+  if (!targets.is_array() && n_warnings == 0) return "";
+  std::string misses;
+  int met = 0, total = 0;
+  for (const auto& t : targets.is_array() ? targets : nlohmann::json::array()) {
+    ++total;
+    if (At(t, {"met"}) == true) {
+      ++met;
+      continue;
+    }
+    misses += "<li>" + Escape(Format(At(t, {"what"})) + ": " + Format(At(t, {"value"})) + " (target " +
+                              Format(At(t, {"target"})) + "): " + Format(At(t, {"cause"}))) + "</li>\n";
+  }
+  std::string s = std::string("<div class=\"checks") + (misses.empty() && n_warnings == 0 ? " ok" : "") + "\">";
+  if (total > 0)
+    s += "<p><strong>Layout targets: " + std::to_string(met) + " of " + std::to_string(total) + " met</strong>" +
+         (misses.empty() ? "" : "; missed:") + "</p>\n" + (misses.empty() ? "" : "<ul>\n" + misses + "</ul>\n");
+  if (n_warnings > 0) {
+    s += "<p><strong>Warnings (" + std::to_string(n_warnings) + ")</strong></p>\n<ul>\n";
+    for (const auto& w : warnings) s += "<li>" + Escape(Format(w)) + "</li>\n";
+    s += "</ul>\n";
+  } else {
+    s += "<p>No warnings.</p>\n";
+  }
+  return s + "</div>\n";
+}
 
 // "; N quads on free edges braced by stiffen ..." when stiffen cut some (the grid shell row
 // counts the extracted mesh, before them), else "".
@@ -342,7 +377,7 @@ Status WriteReportHtml(const nlohmann::json& report, OutputFiles* out, const Vie
                  "not the final layout)"
                : "")
        << "</p>\n"
-       << "<h2>Summary</h2>\n<div class=\"cols\"><div>" << Summary(report) << "</div><div>"
+       << Checks(report) << "<h2>Summary</h2>\n<div class=\"cols\"><div>" << Summary(report) << "</div><div>"
        << KeyResults(report) << "</div><div>" << Timings(report) << "</div></div>\n"
        << View3dHtml(view3d) << "<h2>Figures</h2>\n<div class=\"figures\">\n";
   int index = 0;

@@ -218,8 +218,8 @@ TEST(Cli, BadInputGivesOneLineExitTwoAndNoOutput) {
   EXPECT_EQ(CountLines(unknown.err), 1) << unknown.err;
 }
 
-// λ₁ < 1 (the frame buckles before it carries its load) is a warning in report.json, λ₁ > 1 is
-// not. The frame's load (self-weight and panels) scaled by 1e-2 and 1e2 (λ₁ ≈ 11 unscaled);
+// λ₁ < 1 (the frame buckles before it carries its load) is a warning in report.json and at the
+// top of report.html, λ₁ > 1 is not. The frame's load (self-weight and panels) scaled by 1e-2 and 1e2 (λ₁ ≈ 11 unscaled);
 // curvature guidance, so that the layout does not depend on the load.
 TEST(Cli, ABucklingFactorBelowOneIsAWarningInTheReport) {
   const auto dir = testing::TempDir();
@@ -239,6 +239,15 @@ TEST(Cli, ABucklingFactorBelowOneIsAWarningInTheReport) {
     bool warned = false;
     for (const auto& w : report["warnings"]) warned |= w.get<std::string>().rfind("analyze: the frame buckles at ", 0) == 0;
     EXPECT_EQ(warned, factor[k] < 1.0) << loads[k] << ": λ1 " << factor[k] << " " << report["warnings"];
+    // report.html says it first: the targets met and missed, and every warning.
+    const std::string html = ReadFile(dir + "/" + out + "/report.html");
+    const size_t checks = html.find("<div class=\"checks");
+    ASSERT_NE(checks, std::string::npos);
+    EXPECT_LT(checks, html.find("<h2>Summary</h2>"));
+    EXPECT_NE(html.find("Layout targets: " + std::to_string(report["targets"]["met"].get<int>()) + " of 11 met"),
+              std::string::npos);
+    EXPECT_EQ(html.find("<li>analyze: the frame buckles at ") != std::string::npos, factor[k] < 1.0) << out;
+    EXPECT_EQ(html.find("<p>No warnings.</p>") != std::string::npos, report["warnings"].empty()) << out;
   }
   EXPECT_GT(factor[0], 1.0);
   EXPECT_LT(factor[1], 1.0);
