@@ -420,7 +420,8 @@ Status WriteCompareReportHtml(const nlohmann::json& comparison, const std::strin
     const std::string text = ReadFile(root / source / "report.json", &found);
     const nlohmann::json run = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
     page << "<div><h3>" << source << " guidance</h3>\n"
-         << (found && run.is_object() ? Summary(run) + Timings(run) : std::string("<p>report.json missing</p>\n"))
+         << (found && run.is_object() ? Checks(run) + Summary(run) + Timings(run)
+                                      : std::string("<p>report.json missing</p>\n"))
          << "</div>\n";
   }
   page << "</div>\n";

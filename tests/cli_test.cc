@@ -288,6 +288,11 @@ TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
     EXPECT_LE(row["strain"].get<double>(), 1.0);
     EXPECT_TRUE(row["difference_percent"].is_null());
   }
+  // Each run's checks (targets met, warnings) in the comparison page too.
+  const std::string page = ReadFile(dir + "/cmp/report.html");
+  size_t boxes = 0;
+  for (size_t at = page.find("<div class=\"checks"); at != std::string::npos; at = page.find("<div class=\"checks", at + 1)) ++boxes;
+  EXPECT_EQ(boxes, 2u);
   for (const char* figure : {"compliance_strain.svg", "compliance_curvature.svg"}) {
     const std::string svg = ReadFile(dir + "/cmp/figures/" + figure);
     EXPECT_EQ(svg.rfind("<svg", 0), 0u) << figure;
