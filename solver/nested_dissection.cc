@@ -14,7 +14,8 @@ class Dissection {
  public:
   Dissection(const Eigen::SparseMatrix<double>& A, const std::vector<Eigen::Vector3d>& points)
       : points_(points), owner_(A.rows(), -1) {
-    // Symmetric adjacency (row → neighbours) from either triangle.
+    // Symmetric adjacency (row → neighbours) from either triangle; a pair stored in both is
+    // listed twice, which is harmless (the separator test asks only whether a neighbour is across).
     std::vector<int> degree(A.rows(), 0);
     for (int col = 0; col < A.outerSize(); ++col)
       for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it)

@@ -1,6 +1,6 @@
-// A fill-reducing ordering for sparse Cholesky factors of mesh matrices: nested dissection by
-// coordinate bisection (George 1973, "Nested dissection of a regular finite element mesh";
-// the geometric variant of Miller, Teng, Thurston & Vavasis 1998).
+// A fill-reducing ordering for sparse Cholesky factors of mesh matrices: nested dissection
+// (George 1973, "Nested dissection of a regular finite element mesh") with its separators found
+// by recursive coordinate bisection, the simplest geometric partitioner (Simon 1991).
 //
 // Why our own and not CHOLMOD's: the membrane's matrix on a 1M-triangle reference (479k
 // unknowns) factored after CHOLMOD's AMD costs 1.06e10 flops (simplicial factor ~6 s); after
