@@ -23,6 +23,9 @@ nlohmann::json ReadReport(const std::string& dir) { return nlohmann::json::parse
 const char* kPlaneConfig =
     "surface:\n  generator: plane\n  width: 10\n  depth: 6\n  edge_length: 1.0\n"
     "layout:\n  spacing: 2.0\n";
+const std::string kDomeConfig =
+    "surface:\n  generator: dome\n  width: 18\n  depth: 15\n  rise: 4\n  edge_length: 1.0\n"
+    "layout:\n  spacing: 3.0\n";
 
 TEST(Cli, VersionAndHelp) {
   const auto dir = testing::TempDir();
@@ -223,9 +226,7 @@ TEST(Cli, BadInputGivesOneLineExitTwoAndNoOutput) {
 // curvature guidance, so that the layout does not depend on the load.
 TEST(Cli, ABucklingFactorBelowOneIsAWarningInTheReport) {
   const auto dir = testing::TempDir();
-  testing::WriteFile(dir, "dome.yaml",
-                     "surface:\n  generator: dome\n  width: 18\n  depth: 15\n  rise: 4\n  edge_length: 1.0\n"
-                     "layout:\n  spacing: 3.0\nguidance:\n  source: curvature\n");
+  testing::WriteFile(dir, "dome.yaml", kDomeConfig + "guidance:\n  source: curvature\n");
   double factor[2] = {0.0, 0.0};
   const char* loads[2] = {"--set analysis.gravity=0.0981 --set analysis.panel_load=10",
                           "--set analysis.gravity=981 --set analysis.panel_load=100000"};
@@ -257,9 +258,7 @@ TEST(Cli, ABucklingFactorBelowOneIsAWarningInTheReport) {
 
 TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
   const auto dir = testing::TempDir();
-  testing::WriteFile(dir, "dome.yaml",
-                     "surface:\n  generator: dome\n  width: 18\n  depth: 15\n  rise: 4\n  edge_length: 1.0\n"
-                     "layout:\n  spacing: 3.0\n");
+  testing::WriteFile(dir, "dome.yaml", kDomeConfig);
   const Result r = RunPqlayout(dir, "compare dome.yaml --out cmp");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* source : {"strain", "curvature"}) {
