@@ -110,7 +110,8 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
                                        "Normal offset of the stiffened shell from the planarised one",
                                        out->Path("figures/offset.svg")));
   std::string title = "The stiffened grid shell, seen from the south-west";
-  if (bracing.value("braced_quads", 0) > 0)  // short enough for the figure's width
+  // bracing is null unless extract.brace_free_edges = paying (none and all decide nothing here).
+  if (bracing.is_object() && bracing.value("braced_quads", 0) > 0)  // short enough for the figure's width
     title = "The stiffened shell from the south-west; " + std::to_string(bracing["braced_quads"].get<int>()) +
             " free-edge quads braced";
   return WriteShell3dFigure(*state->surface, mesh, target, title, out->Path("figures/shell_3d.svg"));

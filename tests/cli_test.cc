@@ -256,6 +256,21 @@ TEST(Cli, ABucklingFactorBelowOneIsAWarningInTheReport) {
   EXPECT_NEAR(factor[0] / factor[1], 1e4, 1e3);
 }
 
+// extract.brace_free_edges = none and all decide nothing after stiffen: the stage once read the
+// decision's record, null for both, and every such run ended in an internal error (exit 1).
+TEST(Cli, EveryFreeEdgeBracingChoiceRunsToTheEnd) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "dome.yaml", kDomeConfig);
+  for (const std::string choice : {"none", "all"}) {
+    const Result r = RunPqlayout(dir, "run dome.yaml -q --out braced_" + choice + " --set extract.brace_free_edges=" + choice);
+    ASSERT_EQ(r.exit_code, 0) << choice << ": " << r.err;
+    const auto report = ReadReport(dir + "/braced_" + choice);
+    EXPECT_GT(report["stages"]["stiffen"]["compliance_after"].get<double>(), 0.0) << choice;
+    EXPECT_FALSE(report["stages"]["stiffen"].contains("bracing")) << choice;
+    EXPECT_TRUE(fs::exists(dir + "/braced_" + choice + "/figures/shell_3d.svg")) << choice;
+  }
+}
+
 TEST(Cli, CompareRunsBothGuidanceSourcesAndTabulates) {
   const auto dir = testing::TempDir();
   testing::WriteFile(dir, "dome.yaml", kDomeConfig);
