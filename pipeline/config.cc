@@ -81,6 +81,19 @@ class KeyTable {
       if (e.key.rfind(prefix + ".", 0) == 0) return true;
     return false;
   }
+  // "; its keys: a.b.c, a.b.d, …" — the keys and sections one level below a section (the
+  // first eight), for a `--set` that names a section.
+  std::string ChildKeys(const std::string& section) const {
+    std::vector<std::string> children;
+    for (const auto& e : entries_) {
+      if (e.key.rfind(section + ".", 0) != 0) continue;
+      const std::string child = e.key.substr(0, e.key.find('.', section.size() + 1));
+      if (std::find(children.begin(), children.end(), child) == children.end()) children.push_back(child);
+    }
+    std::string list;
+    for (size_t k = 0; k < children.size() && k < 8; ++k) list += (k > 0 ? ", " : "") + children[k];
+    return "; its keys: " + list + (children.size() > 8 ? ", …" : "");
+  }
   std::string Suggest(const std::string& key) const;
   const std::vector<KeyEntry>& entries() const { return entries_; }
   void set_base_dir(std::string dir) { base_dir_ = std::move(dir); }
@@ -280,7 +293,7 @@ KeyTable::KeyTable(Config* c) {
          "how far a vertex may be from the reference surface after stiffening, m, both sides (0: stage off)");
   Number("stiffen.slide", &st.slide, NonNegative(kMaxLength), "how far a vertex may also slide along the reference, m, per tangent direction (at most 0.1 h); the slide does not use up stiffen.tolerance");
   Number("stiffen.min_member", &st.min_member, Range{0.0, 1.0, true, true}, "no member shorter than this × its planarised length (nor than 1.1 × the section depth)");
-  Integer("stiffen.max_iterations", &st.max_iterations, 0, 100000, "L-BFGS iterations in all, one or two frame solves each");
+  Integer("stiffen.max_iterations", &st.max_iterations, 1, 100000, "L-BFGS iterations in all, one or two frame solves each (stiffen.tolerance = 0 turns the stage off)");
   Number("stiffen.weights.fairness", &st.weights.fairness, NonNegative(kMaxWeight), "mesh polylines keep their planarised second differences (panel kinks)");
   Number("stiffen.weights.edge_length", &st.weights.edge_length, NonNegative(kMaxWeight), "members stay longer than their minimum");
 
@@ -373,8 +386,8 @@ Status ApplyOverride(const std::string& assignment, KeyTable* table, std::string
   const std::string key = assignment.substr(0, eq);
   const KeyEntry* entry = table->Find(key);
   if (!entry) {
-    const std::string what = table->IsSection(key) ? "is a section, not a key" : "unknown key";
-    return Status::InvalidInput(where + ": " + key + ": " + what + table->Suggest(key));
+    if (table->IsSection(key)) return Status::InvalidInput(where + ": " + key + ": is a section, not a key" + table->ChildKeys(key));
+    return Status::InvalidInput(where + ": " + key + ": unknown key" + table->Suggest(key));
   }
   YAML::Node value;
   try {

@@ -87,7 +87,13 @@ TEST(Config, SetErrorsNameTheArgument) {
               "--set levelset.wieghts.alignment=2: levelset.wieghts.alignment: unknown key (did you mean 'levelset.weights.alignment'?)");
   ExpectError("", {"layout.spacing"}, "--set layout.spacing: expected KEY=VALUE");
   ExpectError("", {"layout.spacing=abc"}, "--set layout.spacing=abc: layout.spacing: expected a number, got 'abc'");
-  ExpectError("", {"layout=1"}, "layout: is a section, not a key");
+  ExpectError("", {"layout=1"}, "layout: is a section, not a key; its keys: layout.spacing, ");
+  // A section names its keys instead of suggesting itself (it once said "did you mean
+  // 'analysis.section'?").
+  ExpectError("", {"analysis.section=nonsense"},
+              "--set analysis.section=nonsense: analysis.section: is a section, not a key; its keys: analysis.section.shape, "
+              "analysis.section.diameter, analysis.section.thickness, analysis.section.width, analysis.section.height");
+  ExpectError("", {"levelset=1"}, "levelset.weights, ");  // a section below a section, named once
 }
 
 TEST(Config, PathsResolveAgainstTheConfigFolderButSetPathsAgainstTheWorkingDirectory) {
