@@ -14,6 +14,7 @@
 #include "pipeline/layout_targets.h"
 #include "report/report_html.h"
 #include "pipeline/stages.h"
+#include "problems/boundary_conditions.h"
 #include "solver/numerics.h"
 
 namespace pqlayout {
@@ -162,6 +163,9 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     metrics["seconds"] = SecondsSince(stage_start);
     if (const double peak = PeakResidentMegabytes(); peak > 0.0) metrics["peak_memory_mb"] = peak;
     (*report)["stages"][entry.name] = metrics;
+    // Supports that cannot hold the frame are refused before the layout is solved, not after.
+    if (entry.stage == Stage::kSurface && static_cast<int>(options.until) >= static_cast<int>(Stage::kStiffen))
+      PQ_RETURN_IF_ERROR(CheckSupportsHoldTheFrameInPlan(state.supports));
     completed.push_back(entry.name);
     LOG(INFO) << entry.name << ": done in " << metrics["seconds"].get<double>() << " s";
     if (options.progress) options.progress(entry.name, "done", metrics["seconds"].get<double>());

@@ -135,4 +135,22 @@ Status ResolveBoundaryConditions(const BoundaryOptions& options, const SurfaceMo
   return Status::Ok();
 }
 
+Status CheckSupportsHoldTheFrameInPlan(const VertexConditions& conditions) {
+  int fixed = 0, clamped = 0, sliding = 0;
+  for (const auto& c : conditions) {
+    if (!c) continue;
+    fixed += *c == BoundaryCondition::kFixed;
+    clamped += *c == BoundaryCondition::kClamped;
+    sliding += *c == BoundaryCondition::kSliding;
+  }
+  // No support at all: the membrane stage names the part it cannot hold, more precisely.
+  if (clamped > 0 || fixed >= 2 || fixed + sliding == 0) return Status::Ok();
+  return Status::InvalidInput(
+      "boundary: the supports hold the frame only vertically (" + std::to_string(fixed) + " fixed, 0 clamped, " +
+      std::to_string(sliding) + " sliding boundary vertices: sliding holds u_z only), so it can " +
+      (fixed == 1 ? "turn about the fixed vertex" : "slide and turn") +
+      " in plan as a whole, a mechanism for stiffen and analyze; fix or clamp at least two boundary vertices "
+      "(e.g. boundary.rules: [{select: corners, condition: fixed}]) or stop at --until planarize");
+}
+
 }  // namespace pqlayout

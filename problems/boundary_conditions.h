@@ -21,4 +21,12 @@ using VertexConditions = std::vector<std::optional<BoundaryCondition>>;
 Status ResolveBoundaryConditions(const BoundaryOptions& options, const SurfaceModel& surface,
                                  double corner_angle, VertexConditions* conditions);
 
+// Whether the supports can hold the steel frame (stiffen, analyze) against moving as a whole in
+// plan: sliding holds u_z only (SPEC §7), so without a clamped vertex or two fixed ones the
+// frame slides or turns about a vertical axis, a mechanism that the frame solve would only
+// find after the layout stages. InvalidInput naming the counts and the remedy. Necessary, not
+// sufficient: the frame solve still names any other mechanism. No support at all passes: the
+// membrane stage refuses that, naming the part.
+Status CheckSupportsHoldTheFrameInPlan(const VertexConditions& conditions);
+
 }  // namespace pqlayout

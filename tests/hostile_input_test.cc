@@ -297,6 +297,9 @@ TEST(HostileCli, EveryCaseIsOneLineExitTwoAndNoOutput) {
       {"layout:\n  spacing: {a: 1}\n", "", "c.yaml:2: layout.spacing: expected a number, got a mapping"},
       {"levelset:\n  weights:\n    spacing: 0\n", "", "c.yaml:3: levelset.weights.spacing: must be > 0 (got 0)"},
       {"analysis:\n  section:\n    thickness: 0.1\n", "", "c.yaml: analysis.section.thickness: 0.1 m leaves no hollow"},
+      // Refused after the surface stage, before the layout is solved (it once failed in stiffen).
+      {plane + "boundary: {default: sliding}\n", "",
+       "boundary: the supports hold the frame only vertically (0 fixed, 0 clamped, "},
   };
   for (const auto& c : cases) {
     testing::WriteFile(dir, "c.yaml", c.config);
@@ -307,6 +310,27 @@ TEST(HostileCli, EveryCaseIsOneLineExitTwoAndNoOutput) {
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir + "/out")) << c.expected;
   }
+}
+
+// --- supports -------------------------------------------------------------------------------
+
+TEST(HostileSupports, SlidingAloneCannotHoldTheFrameInPlan) {
+  const auto B = [](int fixed, int clamped, int sliding, int free) {
+    VertexConditions c(1, std::nullopt);  // an interior vertex
+    c.insert(c.end(), fixed, BoundaryCondition::kFixed);
+    c.insert(c.end(), clamped, BoundaryCondition::kClamped);
+    c.insert(c.end(), sliding, BoundaryCondition::kSliding);
+    c.insert(c.end(), free, BoundaryCondition::kFree);
+    return CheckSupportsHoldTheFrameInPlan(c);
+  };
+  ExpectRefused(B(0, 0, 40, 0), "boundary: the supports hold the frame only vertically (0 fixed, 0 clamped, 40 sliding");
+  ExpectRefused(B(0, 0, 40, 0), "so it can slide and turn in plan as a whole");
+  ExpectRefused(B(1, 0, 39, 3), "(1 fixed, 0 clamped, 39 sliding boundary vertices");
+  ExpectRefused(B(1, 0, 39, 3), "so it can turn about the fixed vertex in plan");
+  EXPECT_TRUE(B(2, 0, 38, 0).ok());   // two pins hold translation and turning
+  EXPECT_TRUE(B(0, 1, 39, 0).ok());   // a clamped vertex holds all six
+  EXPECT_TRUE(B(40, 0, 0, 0).ok());
+  EXPECT_TRUE(B(0, 0, 0, 40).ok());   // nothing held at all: the membrane stage names that part
 }
 
 TEST(HostileCli, AFarAwayUnusedVertexIsDroppedWithAWarningInTheReport) {
