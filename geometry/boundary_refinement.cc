@@ -188,7 +188,7 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
   const double min_turn = SharpKinkTurn(tolerance, min_edge);
   int slid_to_kinks = SnapToSharpKinks(boundary, min_turn, min_edge, m.faces, m.face_of, &position, &origin, &pinned);
   int inserted = 0, moved_onto_boundary = 0;
-  const int max_insertions = 4 * static_cast<int>(position.size()) + 16;  // a guard, never reached in practice
+  const int max_insertions = 4 * static_cast<int>(position.size()) + 16;  // a guard, reached once (above)
   while (!queue.empty() && inserted < max_insertions) {
     const auto [a, b] = queue.front();
     queue.pop_front();
@@ -198,6 +198,10 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     const auto la = locate(a), lb = locate(b);
     const Span span = Between(boundary, la, lb);
     if (!span.ok) continue;
+    // An end off the reference boundary (the only case measured: working-mesh corners CGAL
+    // had moved, geometry/remesh.cc) keeps every piece of its chord that far off: splitting
+    // cannot help, and did until the guard below, 268 vertices on a steep dome.
+    if (la.distance > tolerance || lb.distance > tolerance) continue;
     const double from = span.from;
     if (boundary.ChordDeviation(position[a], position[b], la.loop, from, span.span) <= tolerance) continue;
 

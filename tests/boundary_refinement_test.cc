@@ -307,3 +307,32 @@ TEST(BoundaryRefinement, AChordWithTooShortPiecesOnAQuadIsShortenedInstead) {
 
 }  // namespace
 }  // namespace pqlayout
+
+namespace pqlayout {
+namespace {
+
+// A corner left off the reference boundary (CGAL had moved working-mesh corners 0.35 m into a
+// steep dome, geometry/remesh.cc): its chords stay that far off however they are cut, so they
+// are left alone — they were split until the insertion guard, 268 vertices, edges of 1e-10 h.
+TEST(BoundaryRefinement, AChordEndOffTheBoundaryIsNotSplitWithoutEnd) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  const double h = 2.0, tolerance = 0.01 * h;
+  std::vector<double> phi, psi;
+  RotatedCoordinates(s, 0.3, h, 0.37, &phi, &psi);
+  auto [reference_out, before] = ExtractValid(s, phi, psi, 0.2 * h);
+  ExtractedMesh out = reference_out;
+  const int inserted_on_boundary = RefineBoundaryChords(s, tolerance, 0.25 * h, 0.2 * h, &reference_out);
+  int off = -1;
+  for (const auto v : out.mesh.vertices())
+    if (out.origin[v.idx()].on_boundary && !out.origin[v.idx()].corner) off = v.idx();
+  ASSERT_GE(off, 0);
+  out.origin[off].corner = true;  // never slid
+  const VertexHandle vh(off);
+  out.mesh.set_point(vh, out.mesh.point(vh) * (1.0 - 0.3 / out.mesh.point(vh).norm()));  // 0.3 m towards the centre
+  const int inserted = RefineBoundaryChords(s, tolerance, 0.25 * h, 0.2 * h, &out);
+  EXPECT_LE(inserted, inserted_on_boundary + 2);
+  EXPECT_GE(MeasureExtractedMesh(s, out, 30.0).edge_min, 0.1 * h);
+}
+
+}  // namespace
+}  // namespace pqlayout
