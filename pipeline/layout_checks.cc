@@ -50,6 +50,17 @@ Status CheckHoles(const SurfaceModel& surface, double h, const std::string& sour
   return Status::Ok();
 }
 
+constexpr double kLargestRoof = 2000.0;  // metres
+constexpr double kSidewaysDeg = 60.0;
+
+// No roof is kilometres across: a surface that is was most likely exported in millimetres
+// (a 20 m dome read as 20 km: layout.max_panels refuses it, and this says why).
+std::string UnitsHint(const SurfaceExtent& extent) {
+  if (!(extent.long_side > kLargestRoof)) return "";
+  return " (the surface is " + Num(extent.long_side) + " m across: if the file is in millimetres, scale it by 0.001; "
+         "pqlayout reads metres)";
+}
+
 }  // namespace
 
 SurfaceExtent MeasureExtent(const SurfaceModel& surface) {
@@ -107,9 +118,30 @@ Status CheckSpacingFitsSurface(const SurfaceModel& surface, const LayoutOptions&
     return Status::InvalidInput("layout.spacing: " + Num(h) + " m would give about " + Num(panels) + " panels on the " +
                                 Num(surface.total_area()) + " m² of " + source + " (area / h²), more than " +
                                 "layout.max_panels = " + std::to_string(layout.max_panels) + "; use layout.spacing >= " +
-                                Bound(h_min, true) + " m or raise layout.max_panels");
+                                Bound(h_min, true) + " m or raise layout.max_panels" + UnitsHint(extent));
   }
   return CheckHoles(surface, h, source);
+}
+
+double FacingAngleDeg(const SurfaceModel& surface) {
+  Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
+  for (int f = 0; f < surface.num_faces(); ++f) vector_area += surface.face_area(f) * surface.face_normal(f);
+  const double norm = vector_area.norm();
+  if (!(norm > 0.0)) return 90.0;  // a closed or saddle-balanced surface: no side faces up
+  return std::acos(std::min(1.0, std::abs(vector_area.z()) / norm)) * 180.0 / M_PI;
+}
+
+std::string SurfaceFrameWarning(const SurfaceModel& surface, const std::string& source) {
+  const SurfaceExtent extent = MeasureExtent(surface);
+  if (extent.long_side > kLargestRoof)
+    return "surface: " + source + " is " + Num(extent.long_side) + " m across, larger than any roof: if the file is in "
+           "millimetres, scale it by 0.001 (pqlayout reads metres)";
+  const double facing = FacingAngleDeg(surface);
+  if (facing > kSidewaysDeg)
+    return "surface: " + source + " faces sideways (its area points " + Num(facing) + "° from the vertical): pqlayout "
+           "takes z as up and loads along −z, so a roof exported Y-up (Blender, Maya, glTF) is loaded sideways; rotate it "
+           "so that z points up (a façade can stay as it is)";
+  return "";
 }
 
 }  // namespace pqlayout

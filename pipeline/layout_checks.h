@@ -30,4 +30,13 @@ double LoopDiameterBelow(const SurfaceModel& surface, int loop, double limit);
 // `source` names the surface in the message ("roof.obj" or "generator dome").
 Status CheckSpacingFitsSurface(const SurfaceModel& surface, const LayoutOptions& layout, const std::string& source);
 
+// The angle, in degrees, between the surface's vector area (Σ A_f n_f) and the vertical (±z):
+// ~0° for a roof over a level rim, 90° for one exported Y-up (Blender, Maya, glTF) or a façade.
+double FacingAngleDeg(const SurfaceModel& surface);
+
+// A warning for the surface stage, or "" if none: a surface facing sideways (FacingAngleDeg
+// above 60°: pqlayout loads along −z, so a Y-up export is a roof loaded sideways) or larger
+// than any roof (2 km: most likely millimetres read as metres).
+std::string SurfaceFrameWarning(const SurfaceModel& surface, const std::string& source);
+
 }  // namespace pqlayout

@@ -69,7 +69,9 @@ Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
       {"edge_length_max", quality.edge_max},
       {"min_angle_deg", quality.min_angle_deg},
       {"supports", SupportCounts(state->supports)},
+      {"facing_angle_deg", FacingAngleDeg(surface)},
   };
+  if (const std::string warning = SurfaceFrameWarning(surface, source); !warning.empty()) LOG(WARNING) << warning;
   LOG(INFO) << "surface: " << source << ": " << surface.num_faces() << " triangles, "
             << surface.num_vertices() << " vertices, area " << quality.area << " m², "
             << surface.boundary_loops().size() << " boundary loop(s), min angle "

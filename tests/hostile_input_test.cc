@@ -348,6 +348,41 @@ TEST(HostileCli, AFarAwayUnusedVertexIsDroppedWithAWarningInTheReport) {
             std::string::npos);
 }
 
+// A roof exported Y-up, or in millimetres, is read as given but said to be what it looks like:
+// loaded sideways, or larger than any roof. The same grid lying flat says nothing.
+TEST(HostileCli, ASurfaceFacingSidewaysOrKilometresAcrossIsAWarningInTheReport) {
+  const auto dir = testing::TempDir();
+  const PolygonSoup flat = FlatGridSoup(10);  // 10 m × 10 m in the xy plane
+  PolygonSoup y_up = flat, millimetres = flat;
+  for (auto& p : y_up.points) p = Eigen::Vector3d(p.x(), 0.0, -p.y());  // stood up: a wall
+  for (auto& p : millimetres.points) p *= 1000.0;
+  testing::WriteFile(dir, "flat.obj", testing::ObjText(flat));
+  testing::WriteFile(dir, "yup.obj", testing::ObjText(y_up));
+  testing::WriteFile(dir, "mm.obj", testing::ObjText(millimetres));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"flat", ""},
+      {"yup", "yup.obj faces sideways (its area points 90° from the vertical)"},
+      {"mm", "mm.obj is 14142 m across, larger than any roof: if the file is in millimetres, scale it by 0.001"}};
+  for (const auto& [name, expected] : cases) {
+    testing::WriteFile(dir, name + ".yaml", "surface:\n  file: " + name + ".obj\nlayout:\n  spacing: 2000\n");
+    const testing::CliResult r = testing::RunPqlayout(dir, "run " + name + ".yaml --out " + name + " --until surface");
+    if (name != "mm") {  // h = 2000 m is too coarse for a 10 m roof, and refused so
+      EXPECT_EQ(r.exit_code, 2) << name;
+      testing::WriteFile(dir, name + ".yaml", "surface:\n  file: " + name + ".obj\nlayout:\n  spacing: 2\n");
+    }
+    const testing::CliResult run = name == "mm" ? r : testing::RunPqlayout(dir, "run " + name + ".yaml --out " + name + " --until surface");
+    ASSERT_EQ(run.exit_code, 0) << name << ": " << run.err;
+    const auto report = nlohmann::json::parse(testing::ReadFile(dir + "/" + name + "/report.json"));
+    if (expected.empty()) {
+      EXPECT_TRUE(report["warnings"].empty()) << report["warnings"];
+      EXPECT_LT(report["stages"]["surface"]["facing_angle_deg"].get<double>(), 1e-6);
+      continue;
+    }
+    ASSERT_EQ(report["warnings"].size(), 1u) << name << ": " << report["warnings"];
+    EXPECT_NE(report["warnings"][0].get<std::string>().find(expected), std::string::npos) << report["warnings"][0];
+  }
+}
+
 // A layout that misses what was asked for still exits 0, but says so in report.json.
 TEST(HostileCli, AnUnreachableCrossingAngleIsAWarningInTheReport) {
   const auto dir = testing::TempDir();
