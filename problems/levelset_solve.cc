@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 
 #include "geometry/closest_point.h"
 #include "geometry/line_field_singularities.h"
@@ -66,6 +67,31 @@ double WorkingEdge(const SurfaceModel& s, const LevelsetOptions& options, double
   return edge;
 }
 constexpr int kRemeshIterations = 3;
+// A reference whose triangles are mostly slivers (a NURBS render mesh: strips of 0.2 × 2.7 m
+// on a 20 m dome) is remeshed even where it is not finer than the working mesh: solved on
+// directly, its P1 gradients aligned to 9.3° where an isotropic mesh of the same dome gives
+// 6.0°. Generated references never qualify (every angle ≥ 20°: RoofGenerator tests).
+constexpr double kSliverAngleDeg = 15.0;
+constexpr double kSliverFraction = 0.1;
+
+// The share of the triangles with an angle below kSliverAngleDeg.
+double SliverFraction(const SurfaceModel& s) {
+  if (s.num_faces() == 0) return 0.0;
+  const double limit = std::cos(kSliverAngleDeg * M_PI / 180.0);
+  int slivers = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto v = s.face_vertices(f);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d a = (s.position(v[(k + 1) % 3]) - s.position(v[k])).normalized();
+      const Eigen::Vector3d b = (s.position(v[(k + 2) % 3]) - s.position(v[k])).normalized();
+      if (a.dot(b) > limit) {
+        ++slivers;
+        break;
+      }
+    }
+  }
+  return static_cast<double>(slivers) / s.num_faces();
+}
 // References with at least this many triangles get their working mesh from the plan when they
 // are height fields (plan_remesh.h): CGAL's remeshing of the whole reference costs ~7 µs per
 // triangle (1.5 s here, 22–28 s at 1M). Below it CGAL's remeshing stays: on the corpus roofs
@@ -344,7 +370,14 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   std::shared_ptr<const SurfaceModel> working;
   GuidanceField working_guidance;
   std::string working_kind = "reference";
-  if (reference_edge < kReuseReference * working_edge) {
+  const bool finer = reference_edge < kReuseReference * working_edge;
+  const double slivers = finer ? 0.0 : SliverFraction(s);
+  if (finer || slivers > kSliverFraction) {
+    std::ostringstream why;
+    if (finer)
+      why << "reference mean edge " << reference_edge << " m < " << kReuseReference << " × working edge " << working_edge << " m";
+    else
+      why << 100.0 * slivers << " % of the reference's triangles have an angle below " << kSliverAngleDeg << "°";
     // A reference much finer than the layout needs: solve on a remeshed copy whose edges are
     // working_edge long (the level lines are h apart; 0.4 h resolves them), then interpolate
     // φ and ψ to the reference's vertices. Stage time then follows h, not the reference size.
@@ -355,12 +388,10 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
     std::string why_not = "fewer than " + std::to_string(kPlanFromTriangles) + " triangles";
     if (s.num_faces() >= kPlanFromTriangles &&
         RemeshOverPlan(s, working_edge, kWorkingCornerAngle, &working_mesh, &why_not)) {
-      LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference
-                << " × working edge " << working_edge << " m: its plan meshed anew as a working mesh";
+      LOG(INFO) << "levelset: " << why.str() << ": its plan meshed anew as a working mesh";
       working_kind = "plan";
     } else {
-      LOG(INFO) << "levelset: reference mean edge " << reference_edge << " m < " << kReuseReference
-                << " × working edge " << working_edge << " m: remeshing its " << s.num_faces()
+      LOG(INFO) << "levelset: " << why.str() << ": remeshing its " << s.num_faces()
                 << " triangles to a working mesh (CGAL isotropic remeshing, " << kRemeshIterations
                 << " rounds; not from the plan: " << why_not << ") ...";
       PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, kRemeshIterations, &working_mesh)
