@@ -146,7 +146,7 @@ Status CheckSupportsHoldTheFrameInPlan(const VertexConditions& conditions) {
   // No support at all: the membrane stage names the part it cannot hold, more precisely.
   if (clamped > 0 || fixed >= 2 || fixed + sliding == 0) return Status::Ok();
   return Status::InvalidInput(
-      "boundary: the supports hold the frame only vertically (" + std::to_string(fixed) + " fixed, 0 clamped, " +
+      "boundary: the supports cannot hold the frame in plan (" + std::to_string(fixed) + " fixed, 0 clamped, " +
       std::to_string(sliding) + " sliding boundary vertices: sliding holds u_z only), so it can " +
       (fixed == 1 ? "turn about the fixed vertex" : "slide and turn") +
       " in plan as a whole, a mechanism for stiffen and analyze; fix or clamp at least two boundary vertices "

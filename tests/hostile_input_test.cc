@@ -299,7 +299,7 @@ TEST(HostileCli, EveryCaseIsOneLineExitTwoAndNoOutput) {
       {"analysis:\n  section:\n    thickness: 0.1\n", "", "c.yaml: analysis.section.thickness: 0.1 m leaves no hollow"},
       // Refused after the surface stage, before the layout is solved (it once failed in stiffen).
       {plane + "boundary: {default: sliding}\n", "",
-       "boundary: the supports hold the frame only vertically (0 fixed, 0 clamped, "},
+       "boundary: the supports cannot hold the frame in plan (0 fixed, 0 clamped, "},
   };
   for (const auto& c : cases) {
     testing::WriteFile(dir, "c.yaml", c.config);
@@ -323,7 +323,7 @@ TEST(HostileSupports, SlidingAloneCannotHoldTheFrameInPlan) {
     c.insert(c.end(), free, BoundaryCondition::kFree);
     return CheckSupportsHoldTheFrameInPlan(c);
   };
-  ExpectRefused(B(0, 0, 40, 0), "boundary: the supports hold the frame only vertically (0 fixed, 0 clamped, 40 sliding");
+  ExpectRefused(B(0, 0, 40, 0), "boundary: the supports cannot hold the frame in plan (0 fixed, 0 clamped, 40 sliding");
   ExpectRefused(B(0, 0, 40, 0), "so it can slide and turn in plan as a whole");
   ExpectRefused(B(1, 0, 39, 3), "(1 fixed, 0 clamped, 39 sliding boundary vertices");
   ExpectRefused(B(1, 0, 39, 3), "so it can turn about the fixed vertex in plan");
