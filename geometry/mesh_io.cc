@@ -138,9 +138,44 @@ Status BuildTriMesh(const PolygonSoup& soup, TriMesh* mesh, int* dropped_vertice
   return Status::Ok();
 }
 
+int SplitQuads(PolygonSoup* soup) {
+  const int nv = static_cast<int>(soup->points.size());
+  std::vector<std::vector<int>> faces;
+  faces.reserve(soup->faces.size());
+  int split = 0;
+  for (auto& face : soup->faces) {
+    const bool quad = face.size() == 4 && std::all_of(face.begin(), face.end(), [nv](int v) { return v >= 0 && v < nv; });
+    if (!quad) {  // validation names whatever is wrong with it
+      faces.push_back(std::move(face));
+      continue;
+    }
+    // A triangle written as a quad with a vertex repeated (1 2 3 3): the triangle.
+    for (size_t k = 0; k < 4 && face.size() == 4; ++k)
+      if (face[k] == face[(k + 1) % 4]) face.erase(face.begin() + static_cast<long>(k));
+    if (face.size() != 4) {
+      faces.push_back(std::move(face));
+      continue;
+    }
+    const auto& p = soup->points;
+    const bool first = (p[face[0]] - p[face[2]]).squaredNorm() <= (p[face[1]] - p[face[3]]).squaredNorm();
+    if (first) {
+      faces.push_back({face[0], face[1], face[2]});
+      faces.push_back({face[0], face[2], face[3]});
+    } else {
+      faces.push_back({face[0], face[1], face[3]});
+      faces.push_back({face[1], face[2], face[3]});
+    }
+    ++split;
+  }
+  soup->faces = std::move(faces);
+  return split;
+}
+
 Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh) {
   PolygonSoup soup;
   PQ_RETURN_IF_ERROR(ReadPolygonSoup(path, &soup));
+  if (const int split = SplitQuads(&soup); split > 0)
+    LOG(INFO) << path << ": " << split << " quads split into two triangles along their shorter diagonal";
   PQ_RETURN_IF_ERROR(ValidateSurfaceSoup(soup).WithContext(path));
   int dropped = 0;
   PQ_RETURN_IF_ERROR(BuildTriMesh(soup, mesh, &dropped).WithContext(path));

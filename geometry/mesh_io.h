@@ -39,6 +39,12 @@ Status BuildTriMesh(const PolygonSoup& soup, TriMesh* mesh, int* dropped_vertice
 // line "PATH: what is wrong (element index)".
 Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh);
 
+// Splits every quad of four valid vertex indices into two triangles along its shorter
+// diagonal, in place (ReadSurfaceMesh does it before validating: CAD render meshes are mostly
+// quads); a quad with a vertex repeated next to itself becomes that triangle. Larger polygons
+// are left to validation, which refuses them. Returns the quads split.
+int SplitQuads(PolygonSoup* soup);
+
 // Writes OBJ or PLY (chosen by extension; PLY as ASCII) atomically with 17 significant
 // digits, so doubles survive the round trip. Face colours, if the mesh has them, go to PLY.
 Status WriteMesh(const TriMesh& mesh, const std::string& path);

@@ -50,7 +50,8 @@ Status CheckFaces(const PolygonSoup& soup) {
     const std::string name = "face " + std::to_string(f);
     if (face.size() != 3)
       return Status::InvalidInput(name + " has " + std::to_string(face.size()) +
-                                  " vertices: the reference surface must be a triangle mesh");
+                                  " vertices: the reference surface must be a mesh of triangles (quads are split when read; "
+                                  "triangulate larger polygons)");
     for (const int v : face)
       if (v < 0 || v >= nv) return Status::InvalidInput(name + " references missing vertex " + std::to_string(v));
     if (face[0] == face[1] || face[1] == face[2] || face[2] == face[0])
