@@ -1,8 +1,8 @@
 // libFuzzer target for one mesh format, whose extension (".obj", ".ply", ".off" or ".stl")
 // the build gives as PQ_FUZZ_EXTENSION. It does what `pqlayout run` does with a surface
-// file: ReadPolygonSoup (which picks the reader by extension, hence the file), SplitQuads, then
-// ValidateSurfaceSoup and BuildTriMesh when those succeed. Any crash, sanitizer report, hang
-// or runaway allocation is a finding; so is a validated soup that OpenMesh refuses, because
+// file: ReadPolygonSoup (which picks the reader by extension, hence the file), then
+// PrepareSurfaceSoup (quads split, CAD repairs, validation) and BuildTriMesh when those
+// succeed. Any crash, sanitizer report, hang or runaway allocation is a finding; so is a validated soup that OpenMesh refuses, because
 // OpenMesh must only ever get input that has been checked. See fuzz/README.md.
 #include <unistd.h>
 
@@ -47,8 +47,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!file || std::fwrite(data, 1, size, file) != size || std::fclose(file) != 0) std::abort();
   pqlayout::PolygonSoup soup;
   if (!pqlayout::ReadPolygonSoup(InputPath(), &soup).ok()) return 0;
-  pqlayout::SplitQuads(&soup);  // as ReadSurfaceMesh does
-  if (!pqlayout::ValidateSurfaceSoup(soup).ok()) return 0;
+  if (!pqlayout::PrepareSurfaceSoup(InputPath(), &soup).ok()) return 0;  // as ReadSurfaceMesh does
   pqlayout::TriMesh mesh;
   const pqlayout::Status built = pqlayout::BuildTriMesh(soup, &mesh, nullptr);
   if (!built.ok()) {

@@ -11,6 +11,7 @@
 #include "base/format_number.h"
 #include "geometry/mesh_readers.h"
 #include "geometry/mesh_validation.h"
+#include "geometry/soup_repair.h"
 
 namespace pqlayout {
 namespace {
@@ -171,17 +172,36 @@ int SplitQuads(PolygonSoup* soup) {
   return split;
 }
 
-Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh) {
+Status PrepareSurfaceSoup(const std::string& path, PolygonSoup* soup, double weld_tolerance) {
+  std::vector<char> used(soup->points.size(), 0);  // before welding leaves vertices unused
+  for (const auto& face : soup->faces)
+    for (const int v : face)
+      if (v >= 0 && v < static_cast<int>(used.size())) used[v] = 1;
+  if (const int split = SplitQuads(soup); split > 0)
+    LOG(INFO) << path << ": " << split << " quads split into two triangles along their shorter diagonal";
+  const SoupRepairs repairs = RepairSurfaceSoup(soup, weld_tolerance);
+  PQ_RETURN_IF_ERROR(ValidateSurfaceSoup(*soup).WithContext(path));  // one line if refused, no warnings first
+  if (repairs.welded > 0)
+    LOG(WARNING) << path << ": welded " << repairs.welded << " boundary vertices onto others within " << repairs.tolerance
+                 << " m (an unwelded seam: the surface was cut open along it)";
+  if (repairs.zipped > 0)
+    LOG(WARNING) << path << ": closed " << repairs.zipped << " T-junctions (a vertex of one side in the middle of an "
+                 << "edge of the other) by splitting the edge's triangle";
+  if (repairs.flipped > 0)
+    LOG(WARNING) << path << ": " << repairs.flipped << " triangles were oriented against their neighbours (a patch "
+                 << "exported flipped): oriented consistently";
+  if (repairs.turned_up > 0)
+    LOG(INFO) << path << ": " << repairs.turned_up << " part(s) faced down: turned over to face up";
+  if (const auto unused = std::count(used.begin(), used.end(), 0); unused > 0)
+    LOG(WARNING) << path << ": ignored " << unused << " vertices that no face uses";
+  return Status::Ok();
+}
+
+Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh, double weld_tolerance) {
   PolygonSoup soup;
   PQ_RETURN_IF_ERROR(ReadPolygonSoup(path, &soup));
-  if (const int split = SplitQuads(&soup); split > 0)
-    LOG(INFO) << path << ": " << split << " quads split into two triangles along their shorter diagonal";
-  PQ_RETURN_IF_ERROR(ValidateSurfaceSoup(soup).WithContext(path));
-  int dropped = 0;
-  PQ_RETURN_IF_ERROR(BuildTriMesh(soup, mesh, &dropped).WithContext(path));
-  if (dropped > 0)
-    LOG(WARNING) << path << ": ignored " << dropped << " vertices that no face uses";
-  return Status::Ok();
+  PQ_RETURN_IF_ERROR(PrepareSurfaceSoup(path, &soup, weld_tolerance));
+  return BuildTriMesh(soup, mesh, nullptr).WithContext(path);
 }
 
 Status WriteMesh(const TriMesh& mesh, const std::string& path) { return WriteMeshImpl(mesh, path); }

@@ -35,9 +35,15 @@ Status ReadPolygonSoup(const std::string& path, PolygonSoup* soup);
 // uses are dropped (their number is returned in dropped_vertices, may be null).
 Status BuildTriMesh(const PolygonSoup& soup, TriMesh* mesh, int* dropped_vertices);
 
+// What ReadSurfaceMesh does between reading and building: quads split (SplitQuads), the
+// repairs CAD exports need made (soup_repair.h: unwelded seams, T-junctions, orientation),
+// then validated (mesh_validation.h). Logs what it changed; InvalidInput "PATH: ..." if the
+// soup is still not a surface. weld_tolerance: see RepairSurfaceSoup (0: its default).
+Status PrepareSurfaceSoup(const std::string& path, PolygonSoup* soup, double weld_tolerance = 0.0);
+
 // Reads, validates and builds the reference surface: every failure is InvalidInput with one
 // line "PATH: what is wrong (element index)".
-Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh);
+Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh, double weld_tolerance = 0.0);
 
 // Splits every quad of four valid vertex indices into two triangles along its shorter
 // diagonal, in place (ReadSurfaceMesh does it before validating: CAD render meshes are mostly

@@ -6,6 +6,8 @@
 #include <numeric>
 #include <sstream>
 
+#include "geometry/soup_edges.h"
+
 namespace pqlayout {
 namespace {
 
@@ -20,27 +22,6 @@ std::string Str(const Eigen::Vector3d& p) {
   s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
   return s.str();
 }
-
-// One side of an edge as seen from a face: the undirected key, the face and whether the
-// face traverses the edge from the smaller to the larger vertex index.
-struct EdgeUse {
-  int lo, hi, face;
-  bool forward;
-  bool operator<(const EdgeUse& o) const { return std::tie(lo, hi, face) < std::tie(o.lo, o.hi, o.face); }
-};
-
-class DisjointSets {
- public:
-  explicit DisjointSets(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int Find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void Union(int a, int b) { parent_[Find(a)] = Find(b); }
-
- private:
-  std::vector<int> parent_;
-};
 
 // Faces are triangles of three distinct, existing vertices.
 Status CheckFaces(const PolygonSoup& soup) {
@@ -120,15 +101,7 @@ Status CheckDuplicateFaces(const PolygonSoup& soup) {
 // Non-manifold edges, orientation, non-manifold vertices and the boundary, from the sorted
 // list of edge uses.
 Status CheckManifold(const PolygonSoup& soup) {
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * soup.faces.size());
-  for (size_t f = 0; f < soup.faces.size(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = soup.faces[f][k], b = soup.faces[f][(k + 1) % 3];
-      uses.push_back({std::min(a, b), std::max(a, b), static_cast<int>(f), a < b});
-    }
-  }
-  std::sort(uses.begin(), uses.end());
+  const std::vector<EdgeUse> uses = SortedEdgeUses(soup);
   // Corners 3f+k are joined across every interior edge; a vertex whose corners fall into
   // more than one set has more than one fan of triangles: a non-manifold vertex.
   DisjointSets corners(static_cast<int>(3 * soup.faces.size()));
@@ -164,8 +137,10 @@ Status CheckManifold(const PolygonSoup& soup) {
       const int fan = corners.Find(static_cast<int>(3 * f + k));
       if (fan_of_vertex[v] < 0) fan_of_vertex[v] = fan;
       if (fan_of_vertex[v] != fan)
-        return Status::InvalidInput("non-manifold vertex " + std::to_string(v) +
-                                    ": its triangles form more than one fan");
+        return Status::InvalidInput("non-manifold vertex " + std::to_string(v) + " at " + Str(soup.points[v]) +
+                                    ": its triangles form more than one fan (parts touching at a point, or a seam "
+                                    "left open between welded ends: raise surface.weld_tolerance to the export's "
+                                    "tessellation tolerance)");
     }
   }
   if (!has_boundary)

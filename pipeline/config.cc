@@ -194,6 +194,9 @@ KeyTable::KeyTable(Config* c) {
   Number("surface.width", &s.width, Positive(kMaxLength), "generator: x extent, m (disk, annulus: outer diameter)");
   Number("surface.depth", &s.depth, Positive(kMaxLength), "generator: y extent, m (annulus: inner diameter)");
   Number("surface.rise", &s.rise, NonNegative(kMaxLength), "generator: crown height above the supports (or relief), m; not for plane, disk, annulus");
+  Number("surface.weld_tolerance", &s.weld_tolerance, NonNegative(kMaxLength),
+         "file: boundary vertices this close are welded and T-junctions this far off an edge closed (an exported seam), m; "
+         "0: 1e-6 × the diagonal");
 
   Condition("boundary.default", &c->boundary.default_condition, "support of every boundary vertex unless a rule overrides it");
   Rules("boundary.rules", &c->boundary.rules,

@@ -7,6 +7,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "geometry/differential_operators.h"
+
 namespace pqlayout {
 namespace {
 
@@ -34,18 +36,41 @@ std::string Point(const Eigen::Vector3d& p) {
 // At least this many panels across the surface's short side.
 constexpr double kMinPanelsAcross = 2.0;
 
-Status CheckHoles(const SurfaceModel& surface, double h, const std::string& source) {
+// Per boundary loop, whether it is the outline of its connected part (the part's loop of
+// largest |vector area|) rather than a hole in it.
+std::vector<char> OutlineLoops(const SurfaceModel& surface, const SurfaceFrame& frame) {
   const auto& loops = surface.boundary_loops();
-  for (size_t l = 1; l < loops.size(); ++l) {
+  std::vector<int> outline(frame.parts, -1);
+  for (size_t l = 0; l < loops.size(); ++l) {
+    int& best = outline[frame.part_of_vertex[loops[l].vertices.front().idx()]];
+    if (best < 0 || loops[l].vector_area.norm() > loops[best].vector_area.norm()) best = static_cast<int>(l);
+  }
+  std::vector<char> is_outline(loops.size(), 0);
+  for (const int l : outline)
+    if (l >= 0) is_outline[l] = 1;
+  return is_outline;
+}
+
+Status CheckHoles(const SurfaceModel& surface, const SurfaceFrame& frame, double h, const std::string& source) {
+  const auto& loops = surface.boundary_loops();
+  const std::vector<char> is_outline = OutlineLoops(surface, frame);
+  for (size_t l = 0; l < loops.size(); ++l) {
+    if (loops[l].is_outer) continue;
     const double diameter = LoopDiameterBelow(surface, static_cast<int>(l), h);
     if (diameter >= h) continue;
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (const auto v : loops[l].vertices) centre += surface.position(v.idx());
     centre /= static_cast<double>(loops[l].vertices.size());
-    return Status::InvalidInput(
-        "layout.spacing: " + Num(h) + " m is larger than a hole in the surface (" + source + ": boundary loop " +
-        std::to_string(l) + " at " + Point(centre) + ", " + Num(diameter) + " m across): no panel can frame it and the " +
-        "level lines tangle around it; fill the hole in the mesh or use layout.spacing < " + Bound(diameter, false) + " m");
+    const std::string where = source + ": boundary loop " + std::to_string(l) + " at " + Point(centre) + ", " +
+                              Num(diameter) + " m across";
+    const std::string remedy = " or use layout.spacing < " + Bound(diameter, false) + " m";
+    if (is_outline[l])
+      return Status::InvalidInput("layout.spacing: " + Num(h) + " m is larger than a separate part of the surface (" +
+                                  where + ", joined to the rest by no triangle): no panel can frame it; delete it " +
+                                  "from the mesh" + remedy);
+    return Status::InvalidInput("layout.spacing: " + Num(h) + " m is larger than a hole in the surface (" + where +
+                                "): no panel can frame it and the level lines tangle around it; fill the hole in " +
+                                "the mesh" + remedy);
   }
   return Status::Ok();
 }
@@ -103,9 +128,10 @@ double LoopDiameterBelow(const SurfaceModel& surface, int loop, double limit) {
   return diameter;
 }
 
-Status CheckSpacingFitsSurface(const SurfaceModel& surface, const LayoutOptions& layout, const std::string& source) {
+Status CheckSpacingFitsSurface(const SurfaceModel& surface, const SurfaceFrame& frame, const LayoutOptions& layout,
+                               const std::string& source) {
   const double h = layout.spacing;
-  const SurfaceExtent extent = MeasureExtent(surface);
+  const SurfaceExtent& extent = frame.extent;
   if (h > extent.short_side / kMinPanelsAcross)
     return Status::InvalidInput("layout.spacing: " + Num(h) + " m leaves fewer than 2 panels across the surface (" +
                                 source + " is " + Num(extent.long_side) + " m × " + Num(extent.short_side) +
@@ -120,23 +146,27 @@ Status CheckSpacingFitsSurface(const SurfaceModel& surface, const LayoutOptions&
                                 "layout.max_panels = " + std::to_string(layout.max_panels) + "; use layout.spacing >= " +
                                 Bound(h_min, true) + " m or raise layout.max_panels" + UnitsHint(extent));
   }
-  return CheckHoles(surface, h, source);
+  return CheckHoles(surface, frame, h, source);
 }
 
-double FacingAngleDeg(const SurfaceModel& surface) {
+SurfaceFrame MeasureSurfaceFrame(const SurfaceModel& surface) {
+  SurfaceFrame frame;
+  frame.extent = MeasureExtent(surface);
   Eigen::Vector3d vector_area = Eigen::Vector3d::Zero();
   for (int f = 0; f < surface.num_faces(); ++f) vector_area += surface.face_area(f) * surface.face_normal(f);
   const double norm = vector_area.norm();
-  if (!(norm > 0.0)) return 90.0;  // a closed or saddle-balanced surface: no side faces up
-  return std::acos(std::min(1.0, std::abs(vector_area.z()) / norm)) * 180.0 / M_PI;
+  frame.facing_angle_deg = norm > 0.0 ? std::acos(std::min(1.0, std::abs(vector_area.z()) / norm)) * 180.0 / M_PI
+                                      : 90.0;  // a closed or saddle-balanced surface: no side faces up
+  frame.parts = ConnectedComponents(surface, &frame.part_of_vertex);
+  return frame;
 }
 
-std::string SurfaceFrameWarning(const SurfaceModel& surface, const std::string& source) {
-  const SurfaceExtent extent = MeasureExtent(surface);
+std::string SurfaceFrameWarning(const SurfaceFrame& frame, const std::string& source) {
+  const SurfaceExtent& extent = frame.extent;
   if (extent.long_side > kLargestRoof)
     return "surface: " + source + " is " + Num(extent.long_side) + " m across, larger than any roof: if the file is in "
            "millimetres, scale it by 0.001 (pqlayout reads metres)";
-  const double facing = FacingAngleDeg(surface);
+  const double facing = frame.facing_angle_deg;
   if (facing > kSidewaysDeg)
     return "surface: " + source + " faces sideways (its area points " + Num(facing) + "° from the vertical): pqlayout "
            "takes z as up and loads along −z, so a roof exported Y-up (Blender, Maya, glTF) is loaded sideways; rotate it "

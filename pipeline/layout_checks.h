@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "base/status.h"
 #include "geometry/surface_model.h"
@@ -23,20 +24,29 @@ SurfaceExtent MeasureExtent(const SurfaceModel& surface);
 // otherwise some distance ≥ limit (the search stops there).
 double LoopDiameterBelow(const SurfaceModel& surface, int loop, double limit);
 
+// What the checks and warnings below need to know of the surface, measured once.
+struct SurfaceFrame {
+  SurfaceExtent extent;
+  // The angle, in degrees, between the vector area (Σ A_f n_f) and the vertical (±z): ~0° for a
+  // roof over a level rim, 90° for one exported Y-up (Blender, Maya, glTF) or a façade.
+  double facing_angle_deg = 0.0;
+  int parts = 0;                 // connected parts (joined by no triangle)
+  std::vector<int> part_of_vertex;
+};
+SurfaceFrame MeasureSurfaceFrame(const SurfaceModel& surface);
+
 // InvalidInput naming layout.spacing (and the hole) when
 // - h is more than half the extent's short side: fewer than 2 panels across the surface;
 // - area / h² exceeds layout.max_panels;
-// - a hole (boundary loop ≥ 1) is less than h across: no panel can frame it.
+// - a hole (a boundary loop inside a part) or a separate part (a loop that is its part's
+//   outline, other than the surface's outer one) is less than h across: no panel can frame it.
 // `source` names the surface in the message ("roof.obj" or "generator dome").
-Status CheckSpacingFitsSurface(const SurfaceModel& surface, const LayoutOptions& layout, const std::string& source);
+Status CheckSpacingFitsSurface(const SurfaceModel& surface, const SurfaceFrame& frame, const LayoutOptions& layout,
+                               const std::string& source);
 
-// The angle, in degrees, between the surface's vector area (Σ A_f n_f) and the vertical (±z):
-// ~0° for a roof over a level rim, 90° for one exported Y-up (Blender, Maya, glTF) or a façade.
-double FacingAngleDeg(const SurfaceModel& surface);
-
-// A warning for the surface stage, or "" if none: a surface facing sideways (FacingAngleDeg
+// A warning for the surface stage, or "" if none: a surface facing sideways (facing angle
 // above 60°: pqlayout loads along −z, so a Y-up export is a roof loaded sideways) or larger
 // than any roof (2 km: most likely millimetres read as metres).
-std::string SurfaceFrameWarning(const SurfaceModel& surface, const std::string& source);
+std::string SurfaceFrameWarning(const SurfaceFrame& frame, const std::string& source);
 
 }  // namespace pqlayout

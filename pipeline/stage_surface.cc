@@ -13,7 +13,7 @@ namespace {
 Status LoadOrGenerate(const SurfaceOptions& options, TriMesh* mesh, std::string* source) {
   if (!options.file.empty()) {
     *source = options.file;
-    return ReadSurfaceMesh(options.file, mesh);
+    return ReadSurfaceMesh(options.file, mesh, options.weld_tolerance);
   }
   GeneratorParams params;
   params.name = options.generator;
@@ -46,7 +46,8 @@ Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   const SurfaceModel& surface = *state->surface;
   PQ_RETURN_IF_ERROR(ResolveBoundaryConditions(config.boundary, surface, config.extract.corner_angle,
                                                &state->supports));
-  PQ_RETURN_IF_ERROR(CheckSpacingFitsSurface(surface, config.layout, source));
+  const SurfaceFrame frame = MeasureSurfaceFrame(surface);
+  PQ_RETURN_IF_ERROR(CheckSpacingFitsSurface(surface, frame, config.layout, source));
 
   const TriangleQuality quality = MeasureTriangleQuality(surface.mesh());
   nlohmann::json loops = nlohmann::json::array();
@@ -69,12 +70,15 @@ Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
       {"edge_length_max", quality.edge_max},
       {"min_angle_deg", quality.min_angle_deg},
       {"supports", SupportCounts(state->supports)},
-      {"facing_angle_deg", FacingAngleDeg(surface)},
+      {"facing_angle_deg", frame.facing_angle_deg},
+      {"n_parts", frame.parts},
   };
-  if (const std::string warning = SurfaceFrameWarning(surface, source); !warning.empty()) LOG(WARNING) << warning;
+  if (const std::string warning = SurfaceFrameWarning(frame, source); !warning.empty()) LOG(WARNING) << warning;
   LOG(INFO) << "surface: " << source << ": " << surface.num_faces() << " triangles, "
             << surface.num_vertices() << " vertices, area " << quality.area << " m², "
-            << surface.boundary_loops().size() << " boundary loop(s), min angle "
+            << surface.boundary_loops().size() << " boundary loop(s)"
+            << (frame.parts > 1 ? ", " + std::to_string(frame.parts) + " separate parts" : std::string())
+            << ", min angle "
             << quality.min_angle_deg << "°";
   return WriteMesh(surface.mesh(), out->Path("surface.obj"));
 }

@@ -44,6 +44,7 @@ struct SurfaceOptions {
   double width = 30.0;                // generator: x extent, m (disk/annulus: outer diameter)
   double depth = 30.0;                // generator: y extent, m (annulus: inner diameter)
   double rise = 5.0;                  // generator: crown height above the supports, m
+  double weld_tolerance = 0.0;        // file: seam vertices this close are one, m; 0: 1e-6 × the diagonal
 };
 
 struct BoundaryOptions {

@@ -192,10 +192,10 @@ TEST(HostileMesh, ImplausibleCoordinatesAreRefused) {
 void ExpectSpacingLimit(const SurfaceModel& surface, LayoutOptions layout, double ok, double bad,
                         const std::string& source, const std::string& expected) {
   layout.spacing = ok;
-  const Status passed = CheckSpacingFitsSurface(surface, layout, source);
+  const Status passed = CheckSpacingFitsSurface(surface, MeasureSurfaceFrame(surface), layout, source);
   EXPECT_TRUE(passed.ok()) << passed.message();
   layout.spacing = bad;
-  ExpectRefused(CheckSpacingFitsSurface(surface, layout, source), expected);
+  ExpectRefused(CheckSpacingFitsSurface(surface, MeasureSurfaceFrame(surface), layout, source), expected);
 }
 
 TEST(HostileSpacing, ExtentIsMeasuredInTheBestFitPlane) {
@@ -222,7 +222,7 @@ TEST(HostileSpacing, TooManyPanelsAreRefusedBeforeAnythingIsSolved) {
                      "layout.spacing: 0.2 m would give about 1500 panels on the 60 m² of generator plane (area / h²), "
                      "more than layout.max_panels = 1000; use layout.spacing >= 0.245 m or raise layout.max_panels");
   layout.spacing = 1e-300;  // area / h² = inf
-  ExpectRefused(CheckSpacingFitsSurface(surface, layout, "generator plane"), "would give about inf panels");
+  ExpectRefused(CheckSpacingFitsSurface(surface, MeasureSurfaceFrame(surface), layout, "generator plane"), "would give about inf panels");
 }
 
 TEST(HostileSpacing, AHoleSmallerThanThePanelsIsRefused) {
@@ -233,6 +233,19 @@ TEST(HostileSpacing, AHoleSmallerThanThePanelsIsRefused) {
                      "layout.spacing: 2 m is larger than a hole in the surface (roof.obj: boundary loop 1 at (5.67, "
                      "5.33, 0), 1.41 m across): no panel can frame it and the level lines tangle around it; fill the "
                      "hole in the mesh or use layout.spacing < 1.41 m");
+}
+
+TEST(HostileSpacing, ASeparatePartSmallerThanThePanelsIsNamedAsSuch) {
+  PolygonSoup soup = FlatGridSoup(10);  // and a stray triangle 20 m away (CAD debris)
+  soup.points.insert(soup.points.end(), {{30, 30, 0}, {31, 30, 0}, {30, 31, 0}});
+  soup.faces.push_back({121, 122, 123});
+  const SurfaceModel surface(testing::ToMesh(soup));
+  ASSERT_EQ(surface.boundary_loops().size(), 2u);
+  EXPECT_EQ(MeasureSurfaceFrame(surface).parts, 2);
+  ExpectSpacingLimit(surface, LayoutOptions(), 1.4, 2.0, "roof.obj",
+                     "layout.spacing: 2 m is larger than a separate part of the surface (roof.obj: boundary loop 1 at "
+                     "(30.3, 30.3, 0), 1.41 m across, joined to the rest by no triangle): no panel can frame it; delete "
+                     "it from the mesh or use layout.spacing < 1.41 m");
 }
 
 TEST(HostileOutput, MessagesNameTheOutputFolderNotTheStagingFolder) {

@@ -250,6 +250,7 @@ TEST(MeshValidation, FileErrorsArePrefixedWithThePath) {
   for (const auto& c : BrokenCases()) {
     if (c.name == "empty") continue;  // an empty OBJ is refused by the reader itself
     if (c.name == "quad") continue;   // split when read (MeshIo.QuadsAreSplitAlongTheirShorterDiagonalWhenRead)
+    if (c.name == "orientation") continue;  // turned over when read (SoupRepair.*)
     const std::string path = WriteFile(dir, c.name + ".obj", ObjText(c.soup));
     TriMesh mesh;
     const Status s = ReadSurfaceMesh(path, &mesh);
