@@ -115,19 +115,13 @@ Status ReadPolygonSoup(const std::string& path, PolygonSoup* soup) {
   return ReadStlSoup(path, soup);
 }
 
-Status BuildTriMesh(const PolygonSoup& soup, TriMesh* mesh, int* dropped_vertices) {
+Status BuildTriMesh(const PolygonSoup& soup, TriMesh* mesh, std::vector<int>* mesh_vertex_of) {
   std::vector<int> new_index(soup.points.size(), -1);
   for (const auto& face : soup.faces)
     for (const int v : face) new_index[v] = 0;
   *mesh = TriMesh();
-  int dropped = 0;
-  for (size_t v = 0; v < soup.points.size(); ++v) {
-    if (new_index[v] < 0) {
-      ++dropped;
-      continue;
-    }
-    new_index[v] = mesh->add_vertex(ToOpenMesh(soup.points[v])).idx();
-  }
+  for (size_t v = 0; v < soup.points.size(); ++v)
+    if (new_index[v] >= 0) new_index[v] = mesh->add_vertex(ToOpenMesh(soup.points[v])).idx();
   for (size_t f = 0; f < soup.faces.size(); ++f) {
     std::vector<VertexHandle> corners;
     for (const int v : soup.faces[f]) corners.emplace_back(new_index[v]);
@@ -135,7 +129,7 @@ Status BuildTriMesh(const PolygonSoup& soup, TriMesh* mesh, int* dropped_vertice
       return Status::Internal("face " + std::to_string(f) + " could not be added to the mesh");
   }
   mesh->update_face_normals();
-  if (dropped_vertices) *dropped_vertices = dropped;
+  if (mesh_vertex_of) *mesh_vertex_of = std::move(new_index);
   return Status::Ok();
 }
 
@@ -172,7 +166,8 @@ int SplitQuads(PolygonSoup* soup) {
   return split;
 }
 
-Status PrepareSurfaceSoup(const std::string& path, PolygonSoup* soup, double weld_tolerance) {
+Status PrepareSurfaceSoup(const std::string& path, PolygonSoup* soup, double weld_tolerance,
+                          std::vector<int>* vertex_of) {
   std::vector<char> used(soup->points.size(), 0);  // before welding leaves vertices unused
   for (const auto& face : soup->faces)
     for (const int v : face)
@@ -194,14 +189,23 @@ Status PrepareSurfaceSoup(const std::string& path, PolygonSoup* soup, double wel
     LOG(INFO) << path << ": " << repairs.turned_up << " part(s) faced down: turned over to face up";
   if (const auto unused = std::count(used.begin(), used.end(), 0); unused > 0)
     LOG(WARNING) << path << ": ignored " << unused << " vertices that no face uses";
+  if (vertex_of) *vertex_of = repairs.vertex_of;
   return Status::Ok();
 }
 
-Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh, double weld_tolerance) {
+Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh, double weld_tolerance, std::vector<int>* file_vertex) {
   PolygonSoup soup;
   PQ_RETURN_IF_ERROR(ReadPolygonSoup(path, &soup));
-  PQ_RETURN_IF_ERROR(PrepareSurfaceSoup(path, &soup, weld_tolerance));
-  return BuildTriMesh(soup, mesh, nullptr).WithContext(path);
+  std::vector<int> welded_to;
+  PQ_RETURN_IF_ERROR(PrepareSurfaceSoup(path, &soup, weld_tolerance, &welded_to));
+  std::vector<int> mesh_vertex;
+  PQ_RETURN_IF_ERROR(BuildTriMesh(soup, mesh, &mesh_vertex).WithContext(path));
+  if (file_vertex) {
+    file_vertex->resize(mesh_vertex.size());
+    for (size_t v = 0; v < mesh_vertex.size(); ++v)
+      (*file_vertex)[v] = mesh_vertex[welded_to.empty() ? v : static_cast<size_t>(welded_to[v])];
+  }
+  return Status::Ok();
 }
 
 Status WriteMesh(const TriMesh& mesh, const std::string& path) { return WriteMeshImpl(mesh, path); }

@@ -32,18 +32,24 @@ const std::vector<std::string>& ReadableMeshExtensions();
 Status ReadPolygonSoup(const std::string& path, PolygonSoup* soup);
 
 // Builds a triangle mesh from a soup that passed ValidateSurfaceSoup. Vertices that no face
-// uses are dropped (their number is returned in dropped_vertices, may be null).
-Status BuildTriMesh(const PolygonSoup& soup, TriMesh* mesh, int* dropped_vertices);
+// uses are dropped: mesh_vertex_of (may be null) gets, per soup vertex, its mesh vertex or -1.
+Status BuildTriMesh(const PolygonSoup& soup, TriMesh* mesh, std::vector<int>* mesh_vertex_of);
 
 // What ReadSurfaceMesh does between reading and building: quads split (SplitQuads), the
 // repairs CAD exports need made (soup_repair.h: unwelded seams, T-junctions, orientation),
 // then validated (mesh_validation.h). Logs what it changed; InvalidInput "PATH: ..." if the
-// soup is still not a surface. weld_tolerance: see RepairSurfaceSoup (0: its default).
-Status PrepareSurfaceSoup(const std::string& path, PolygonSoup* soup, double weld_tolerance = 0.0);
+// soup is still not a surface. weld_tolerance: see RepairSurfaceSoup (0: its default);
+// vertex_of (may be null): per soup vertex, the one that stands for it after welding.
+Status PrepareSurfaceSoup(const std::string& path, PolygonSoup* soup, double weld_tolerance = 0.0,
+                          std::vector<int>* vertex_of = nullptr);
 
 // Reads, validates and builds the reference surface: every failure is InvalidInput with one
 // line "PATH: what is wrong (element index)".
-Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh, double weld_tolerance = 0.0);
+// file_vertex (may be null): per vertex of the file, in its order from 0, the mesh vertex
+// that stands for it (welded ones share one), or -1 if no face uses it: vertex ids given
+// for the file (boundary.rules' ids) are resolved through it.
+Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh, double weld_tolerance = 0.0,
+                       std::vector<int>* file_vertex = nullptr);
 
 // Splits every quad of four valid vertex indices into two triangles along its shorter
 // diagonal, in place (ReadSurfaceMesh does it before validating: CAD render meshes are mostly

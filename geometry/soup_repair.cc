@@ -48,8 +48,8 @@ std::vector<BoundaryEdge> BoundaryEdges(const std::vector<EdgeUse>& uses) {
 }
 
 // Boundary vertices within tol of each other, not on a common triangle, become the first of
-// them. Candidates are found by sorting along a direction no roof's boundary follows.
-int WeldBoundary(PolygonSoup* soup, const std::vector<BoundaryEdge>& edges, double tol) {
+// them (vertex_of says which, for every vertex). Candidates are found by sorting along a direction no roof's boundary follows.
+int WeldBoundary(PolygonSoup* soup, const std::vector<BoundaryEdge>& edges, double tol, std::vector<int>* vertex_of) {
   std::vector<int> vertices;
   for (const auto& e : edges) vertices.insert(vertices.end(), {e.a, e.b});
   std::sort(vertices.begin(), vertices.end());
@@ -82,6 +82,8 @@ int WeldBoundary(PolygonSoup* soup, const std::vector<BoundaryEdge>& edges, doub
   if (welded == 0) return 0;
   for (auto& face : soup->faces)
     for (int& v : face) v = sets.Find(v);
+  vertex_of->resize(soup->points.size());
+  for (size_t v = 0; v < soup->points.size(); ++v) (*vertex_of)[v] = sets.Find(static_cast<int>(v));
   return welded;
 }
 
@@ -215,7 +217,7 @@ SoupRepairs RepairSurfaceSoup(PolygonSoup* soup, double weld_tolerance) {
   if (!Repairable(*soup)) return repairs;
   repairs.tolerance = weld_tolerance > 0.0 ? weld_tolerance : 1e-6 * UsedDiagonal(*soup);
   auto uses = SortedEdgeUses(*soup);
-  repairs.welded = WeldBoundary(soup, BoundaryEdges(uses), repairs.tolerance);
+  repairs.welded = WeldBoundary(soup, BoundaryEdges(uses), repairs.tolerance, &repairs.vertex_of);
   if (repairs.welded > 0) uses = SortedEdgeUses(*soup);
   for (int pass = 0; pass < 8; ++pass) {
     const int zipped = ZipOnePass(soup, BoundaryEdges(uses), repairs.tolerance);

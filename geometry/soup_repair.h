@@ -27,6 +27,7 @@ struct SoupRepairs {
   int flipped = 0;    // triangles that disagreed with the rest of their part
   int turned_up = 0;  // parts that faced down, turned over as a whole
   double tolerance = 0.0;  // metres
+  std::vector<int> vertex_of;  // per soup vertex, the vertex that now stands for it; empty: itself
 };
 
 // weld_tolerance > 0 replaces the default 1e-6 × diagonal (a CAD tessellation tolerance).

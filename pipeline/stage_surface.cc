@@ -10,10 +10,10 @@
 namespace pqlayout {
 namespace {
 
-Status LoadOrGenerate(const SurfaceOptions& options, TriMesh* mesh, std::string* source) {
+Status LoadOrGenerate(const SurfaceOptions& options, TriMesh* mesh, std::string* source, std::vector<int>* file_vertex) {
   if (!options.file.empty()) {
     *source = options.file;
-    return ReadSurfaceMesh(options.file, mesh, options.weld_tolerance);
+    return ReadSurfaceMesh(options.file, mesh, options.weld_tolerance, file_vertex);
   }
   GeneratorParams params;
   params.name = options.generator;
@@ -41,11 +41,12 @@ Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   const Config& config = state->config;
   TriMesh mesh;
   std::string source;
-  PQ_RETURN_IF_ERROR(LoadOrGenerate(config.surface, &mesh, &source));
+  std::vector<int> file_vertex;  // empty for a generated surface
+  PQ_RETURN_IF_ERROR(LoadOrGenerate(config.surface, &mesh, &source, &file_vertex));
   state->surface = std::make_unique<SurfaceModel>(std::move(mesh));
   const SurfaceModel& surface = *state->surface;
   PQ_RETURN_IF_ERROR(ResolveBoundaryConditions(config.boundary, surface, config.extract.corner_angle,
-                                               &state->supports));
+                                               &state->supports, file_vertex.empty() ? nullptr : &file_vertex));
   const SurfaceFrame frame = MeasureSurfaceFrame(surface);
   PQ_RETURN_IF_ERROR(CheckSpacingFitsSurface(surface, frame, config.layout, source));
 

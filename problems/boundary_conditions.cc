@@ -57,9 +57,33 @@ Status ReadIdsFile(const std::string& path, std::vector<VertexId>* ids) {
   return Status::Ok();
 }
 
+// The boundary vertices an ids or ids_file selector picks; ids are the file's vertices when
+// file_vertex is given (see ReadSurfaceMesh), else the surface's.
+Status SelectIds(const BoundarySelector& s, const SurfaceModel& surface, const std::vector<int>* file_vertex,
+                 std::vector<int>* picked) {
+  std::vector<VertexId> ids;
+  for (const int v : s.ids) ids.push_back({v, ""});
+  if (s.kind == BoundarySelector::Kind::kIdsFile) PQ_RETURN_IF_ERROR(ReadIdsFile(s.ids_file, &ids));
+  const int count = file_vertex ? static_cast<int>(file_vertex->size()) : surface.num_vertices();
+  for (const auto& [id, where] : ids) {
+    auto refuse = [&where = where, id = id](const std::string& what) {
+      return Status::InvalidInput((where.empty() ? "" : where + ": ") + "vertex " + std::to_string(id) + what);
+    };
+    // Negative ids are refused when read; checked again here because they index arrays.
+    if (id < 0 || id >= count)
+      return refuse(" does not exist (the " + std::string(file_vertex ? "file" : "surface") + " has " +
+                    std::to_string(count) + " vertices, numbered from 0)");
+    const int v = file_vertex ? (*file_vertex)[id] : static_cast<int>(id);
+    if (v < 0) return refuse(" is used by no triangle of the file");
+    if (!surface.is_boundary(v)) return refuse(" is not a boundary vertex");
+    picked->push_back(v);
+  }
+  return Status::Ok();
+}
+
 // The boundary vertices a selector picks.
 Status Select(const BoundarySelector& s, const SurfaceModel& surface, double corner_angle,
-              std::vector<int>* picked) {
+              const std::vector<int>* file_vertex, std::vector<int>* picked) {
   using K = BoundarySelector::Kind;
   const auto& loops = surface.boundary_loops();
   auto add_loop = [&](size_t l) {
@@ -91,23 +115,7 @@ Status Select(const BoundarySelector& s, const SurfaceModel& surface, double cor
       }
       return Status::Ok();
     case K::kIds:
-    case K::kIdsFile: {
-      std::vector<VertexId> ids;
-      for (const int v : s.ids) ids.push_back({v, ""});
-      if (s.kind == K::kIdsFile) PQ_RETURN_IF_ERROR(ReadIdsFile(s.ids_file, &ids));
-      for (const auto& [v, where] : ids) {
-        auto refuse = [&where = where, v = v](const std::string& what) {
-          return Status::InvalidInput((where.empty() ? "" : where + ": ") + "vertex " + std::to_string(v) + what);
-        };
-        // Negative ids are refused when read; checked again here because they index arrays.
-        if (v < 0 || v >= surface.num_vertices())
-          return refuse(" does not exist (the surface has " + std::to_string(surface.num_vertices()) +
-                        " vertices, numbered from 0)");
-        if (!surface.is_boundary(static_cast<int>(v))) return refuse(" is not a boundary vertex");
-        picked->push_back(static_cast<int>(v));
-      }
-      return Status::Ok();
-    }
+    case K::kIdsFile: return SelectIds(s, surface, file_vertex, picked);
   }
   return Status::Internal("unknown selector");
 }
@@ -115,7 +123,8 @@ Status Select(const BoundarySelector& s, const SurfaceModel& surface, double cor
 }  // namespace
 
 Status ResolveBoundaryConditions(const BoundaryOptions& options, const SurfaceModel& surface,
-                                 double corner_angle, VertexConditions* conditions) {
+                                 double corner_angle, VertexConditions* conditions,
+                                 const std::vector<int>* file_vertex) {
   conditions->assign(surface.num_vertices(), std::nullopt);
   for (int v = 0; v < surface.num_vertices(); ++v)
     if (surface.is_boundary(v)) (*conditions)[v] = options.default_condition;
@@ -123,7 +132,7 @@ Status ResolveBoundaryConditions(const BoundaryOptions& options, const SurfaceMo
     const BoundaryRule& rule = options.rules[r];
     const std::string name = (rule.origin.empty() ? "" : rule.origin + ": ") + "boundary.rules[" + std::to_string(r) + "]";
     std::vector<int> picked;
-    const Status selected = Select(rule.select, surface, corner_angle, &picked);
+    const Status selected = Select(rule.select, surface, corner_angle, file_vertex, &picked);
     // A message that starts with an ids_file's name and line keeps them first.
     if (!selected.ok() && rule.select.kind == BoundarySelector::Kind::kIdsFile &&
         selected.message().rfind(rule.select.ids_file + ":", 0) == 0)

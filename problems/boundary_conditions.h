@@ -18,8 +18,11 @@ using VertexConditions = std::vector<std::optional<BoundaryCondition>>;
 // A rule that selects no boundary vertex, an index out of range or an id that is not a
 // boundary vertex is InvalidInput naming the rule ("cfg.yaml:14: boundary.rules[2]: ..."; for
 // an ids_file its name and line come first: "ids.txt:3: vertex 7 ... (cfg.yaml:14: boundary.rules[2])").
+// file_vertex (a surface read from a file; see ReadSurfaceMesh): ids are the file's vertices,
+// mapped through it, so that unused and welded vertices do not shift them; null: the surface's.
 Status ResolveBoundaryConditions(const BoundaryOptions& options, const SurfaceModel& surface,
-                                 double corner_angle, VertexConditions* conditions);
+                                 double corner_angle, VertexConditions* conditions,
+                                 const std::vector<int>* file_vertex = nullptr);
 
 // Whether the supports can hold the steel frame (stiffen, analyze) against moving as a whole in
 // plan: sliding holds u_z only (SPEC §7), so without a clamped vertex or two fixed ones the

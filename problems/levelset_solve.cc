@@ -378,7 +378,8 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
       why << "reference mean edge " << reference_edge << " m < " << kReuseReference << " × working edge " << working_edge << " m";
     else
       why << 100.0 * slivers << " % of the reference's triangles have an angle below " << kSliverAngleDeg << "°";
-    // A reference much finer than the layout needs: solve on a remeshed copy whose edges are
+    // A reference much finer than the layout needs, or one of slivers (a NURBS render mesh of
+    // strips, on which the gradients are poor): solve on a remeshed copy whose edges are
     // working_edge long (the level lines are h apart; 0.4 h resolves them), then interpolate
     // φ and ψ to the reference's vertices. Stage time then follows h, not the reference size.
     // A large height-field reference is meshed anew in the plan (plan_remesh.h, < 0.5 s at 1M

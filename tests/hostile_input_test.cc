@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "geometry/mesh_io.h"
 #include "geometry/mesh_validation.h"
 #include "problems/boundary_conditions.h"
 #include "problems/guidance.h"
@@ -64,6 +65,51 @@ TEST(HostileIds, NegativeAndMissingIdsAreRefusedNotIndexed) {
   }
   r.rule.select.ids = {12};  // the grid's centre
   ExpectRefused(r.Resolve(), "c.yaml:7: boundary.rules[0]: vertex 12 is not a boundary vertex");
+}
+
+// Ids name the vertices of the file, in its order: before, the mesh's numbering was used, so
+// unused vertices before the roof's (other objects of the export) or welded seam copies
+// shifted every id onto another vertex, silently.
+TEST(HostileIds, IdsAreTheFilesVerticesThoughUnusedAndWeldedOnesAreDropped) {
+  PolygonSoup soup;
+  soup.points = {{50, 50, 0}, {60, 50, 0}};  // used by no face
+  for (const double x0 : {0.0, 2.0})         // two 2 × 2 patches, the seam x = 2 unwelded
+    for (int j = 0; j <= 2; ++j)
+      for (int i = 0; i <= 2; ++i) soup.points.emplace_back(x0 + i, j, 0.0);
+  for (const int base : {2, 11})
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const int a = base + 3 * j + i;
+        soup.faces.push_back({a, a + 1, a + 4});
+        soup.faces.push_back({a, a + 4, a + 3});
+      }
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "two_patches.obj", testing::ObjText(soup));
+  TriMesh mesh;
+  std::vector<int> file_vertex;
+  ASSERT_TRUE(ReadSurfaceMesh(dir + "/two_patches.obj", &mesh, 0.0, &file_vertex).ok());
+  ASSERT_EQ(file_vertex.size(), 20u);
+  const SurfaceModel surface(std::move(mesh));
+  ASSERT_EQ(surface.num_vertices(), 15);  // 18 minus the 3 seam copies
+  BoundaryOptions options;
+  options.default_condition = BoundaryCondition::kFree;
+  options.rules.push_back({});
+  options.rules[0].select.kind = BoundarySelector::Kind::kIds;
+  options.rules[0].select.ids = {19, 11};  // (4, 2): the far corner; (2, 0): a seam copy
+  VertexConditions conditions;
+  ASSERT_TRUE(ResolveBoundaryConditions(options, surface, 30.0, &conditions, &file_vertex).ok());
+  std::vector<Eigen::Vector3d> fixed;
+  for (int v = 0; v < surface.num_vertices(); ++v)
+    if (conditions[v] == BoundaryCondition::kFixed) fixed.push_back(surface.position(v));
+  ASSERT_EQ(fixed.size(), 2u);
+  EXPECT_EQ(fixed[0], Eigen::Vector3d(2, 0, 0));  // the seam vertex, written first as id 4
+  EXPECT_EQ(fixed[1], Eigen::Vector3d(4, 2, 0));
+  options.rules[0].select.ids = {1};
+  ExpectRefused(ResolveBoundaryConditions(options, surface, 30.0, &conditions, &file_vertex),
+                "vertex 1 is used by no triangle of the file");
+  options.rules[0].select.ids = {20};
+  ExpectRefused(ResolveBoundaryConditions(options, surface, 30.0, &conditions, &file_vertex),
+                "vertex 20 does not exist (the file has 20 vertices, numbered from 0)");
 }
 
 TEST(HostileIds, IdsFileErrorsNameTheFileAndLine) {
@@ -282,7 +328,7 @@ TEST(HostileCli, EveryCaseIsOneLineExitTwoAndNoOutput) {
       {grid + "boundary:\n  rules: [{select: {ids: [-1]}, condition: free}]\n", "",
        "c.yaml:6: boundary.rules[0].select.ids: '-1' is not a vertex id"},
       {grid + "boundary:\n  rules: [{select: {ids: [500]}, condition: free}]\n", "",
-       "c.yaml:6: boundary.rules[0]: vertex 500 does not exist (the surface has 121 vertices"},
+       "c.yaml:6: boundary.rules[0]: vertex 500 does not exist (the file has 121 vertices"},
       {grid + "boundary:\n  rules: [{select: {ids_file: adir}, condition: free}]\n", "", "adir: not a vertex-id file"},
       {"[a]: 1\n", "", "c.yaml:1: keys must be plain names, got a list"},
       {"boundary:\n  rules: [{[a]: 1}]\n", "", "c.yaml:2: boundary.rules[0]: expected the keys select and condition"},
