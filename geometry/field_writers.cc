@@ -30,11 +30,12 @@ std::string VtkName(std::string name) {
 
 }  // namespace
 
-Status WriteFieldsVtk(const SurfaceModel& surface, const SurfaceFields& fields, const std::string& path) {
+Status WriteFieldsVtk(const SurfaceModel& surface, const SurfaceFields& fields, const std::string& path,
+                      const Eigen::Vector3d& origin) {
   std::string s = "# vtk DataFile Version 3.0\npqlayout reference surface and fields\nASCII\nDATASET POLYDATA\n";
   s += "POINTS " + std::to_string(surface.num_vertices()) + " double\n";
   for (int v = 0; v < surface.num_vertices(); ++v) {
-    const Eigen::Vector3d p = surface.position(v);
+    const Eigen::Vector3d p = surface.position(v) + origin;
     AppendRow(&s, {p.x(), p.y(), p.z()});
   }
   s += "POLYGONS " + std::to_string(surface.num_faces()) + " " + std::to_string(4 * surface.num_faces()) + "\n";

@@ -21,7 +21,9 @@ struct SurfaceFields {
 };
 
 // Writes the surface and its fields as a legacy VTK file (opens in ParaView), atomically.
-Status WriteFieldsVtk(const SurfaceModel& surface, const SurfaceFields& fields, const std::string& path);
+// origin is added to every point (a georeferenced surface is solved in a local frame).
+Status WriteFieldsVtk(const SurfaceModel& surface, const SurfaceFields& fields, const std::string& path,
+                      const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
 // A CSV table: header row of column names, then one row per element with its id first.
 // Each column is a vector of values of the same length; vector-valued columns are split

@@ -34,20 +34,20 @@ constexpr int kPointDigits = 17;
 
 // "x y z\n".
 template <typename Point>
-void WritePoint(const Point& p, std::ostream& out) {
+void WritePoint(const Point& p, const Eigen::Vector3d& origin, std::ostream& out) {
   for (int k = 0; k < 3; ++k) {
-    WriteNumber(out, p[k], kPointDigits);
+    WriteNumber(out, p[k] + origin[k], kPointDigits);
     out.put(k < 2 ? ' ' : '\n');
   }
 }
 
 template <typename Mesh>
-void WriteObj(const Mesh& mesh, std::ostream& out) {
+void WriteObj(const Mesh& mesh, const Eigen::Vector3d& origin, std::ostream& out) {
   out << "# pqlayout: " << mesh.n_vertices() << " vertices, " << mesh.n_faces() << " faces\n";
   for (const auto v : mesh.vertices()) {
     const auto& p = mesh.point(v);
     out << "v ";
-    WritePoint(p, out);
+    WritePoint(p, origin, out);
   }
   for (const auto f : mesh.faces()) {
     out << "f";
@@ -57,14 +57,14 @@ void WriteObj(const Mesh& mesh, std::ostream& out) {
 }
 
 template <typename Mesh>
-void WritePly(const Mesh& mesh, std::ostream& out) {
+void WritePly(const Mesh& mesh, const Eigen::Vector3d& origin, std::ostream& out) {
   const bool colors = mesh.has_face_colors();
   out << "ply\nformat ascii 1.0\ncomment pqlayout\nelement vertex " << mesh.n_vertices()
       << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << mesh.n_faces()
       << "\nproperty list uchar int vertex_indices\n";
   if (colors) out << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   out << "end_header\n";
-  for (const auto v : mesh.vertices()) WritePoint(mesh.point(v), out);
+  for (const auto v : mesh.vertices()) WritePoint(mesh.point(v), origin, out);
   for (const auto f : mesh.faces()) {
     out << mesh.valence(f);
     for (const auto v : mesh.fv_range(f)) out << " " << v.idx();
@@ -77,14 +77,14 @@ void WritePly(const Mesh& mesh, std::ostream& out) {
 }
 
 template <typename Mesh>
-Status WriteMeshImpl(const Mesh& mesh, const std::string& path) {
+Status WriteMeshImpl(const Mesh& mesh, const std::string& path, const Eigen::Vector3d& origin) {
   const std::string ext = LowerExtension(path);
   if (ext != ".obj" && ext != ".ply")
     return Status::Internal(path + ": cannot write meshes of type '" + ext + "' (use .obj or .ply)");
   return WriteFileAtomically(path, [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary);
-    if (ext == ".obj") WriteObj(mesh, out);
-    else WritePly(mesh, out);
+    if (ext == ".obj") WriteObj(mesh, origin, out);
+    else WritePly(mesh, origin, out);
     out.close();
     return static_cast<bool>(out);
   });
@@ -208,7 +208,11 @@ Status ReadSurfaceMesh(const std::string& path, TriMesh* mesh, double weld_toler
   return Status::Ok();
 }
 
-Status WriteMesh(const TriMesh& mesh, const std::string& path) { return WriteMeshImpl(mesh, path); }
-Status WriteMesh(const PolyMesh& mesh, const std::string& path) { return WriteMeshImpl(mesh, path); }
+Status WriteMesh(const TriMesh& mesh, const std::string& path, const Eigen::Vector3d& origin) {
+  return WriteMeshImpl(mesh, path, origin);
+}
+Status WriteMesh(const PolyMesh& mesh, const std::string& path, const Eigen::Vector3d& origin) {
+  return WriteMeshImpl(mesh, path, origin);
+}
 
 }  // namespace pqlayout

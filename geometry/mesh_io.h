@@ -59,7 +59,8 @@ int SplitQuads(PolygonSoup* soup);
 
 // Writes OBJ or PLY (chosen by extension; PLY as ASCII) atomically with 17 significant
 // digits, so doubles survive the round trip. Face colours, if the mesh has them, go to PLY.
-Status WriteMesh(const TriMesh& mesh, const std::string& path);
-Status WriteMesh(const PolyMesh& mesh, const std::string& path);
+// origin is added to every point (a georeferenced surface is solved in a local frame).
+Status WriteMesh(const TriMesh& mesh, const std::string& path, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
+Status WriteMesh(const PolyMesh& mesh, const std::string& path, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
 }  // namespace pqlayout

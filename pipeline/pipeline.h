@@ -52,6 +52,10 @@ struct PipelineState {
   ExtractedMesh shell;                    // stage stiffen: the final grid shell (= planarized when off)
   AnalysisTables analysis;                // stage analyze
   std::vector<double> normal_offset;      // stage stiffen: per shell vertex, m from the planarised mesh
+  // stage surface: every stage works in a local frame; the file's coordinates are local +
+  // origin (zero unless the file is georeferenced: see stage_surface.cc), and so are those of
+  // every geometry file written.
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
 };
 
 // One stage: reads and extends state, writes files through out, fills metrics (JSON object;

@@ -69,7 +69,7 @@ AnalysisTables BuildAnalysisTables(const PipelineState& state, const GridFrame& 
   const size_t n = frame.node_of.size(), m = frame.model.members.size();
   std::vector<double> x(n), y(n), z(n), load(n), ux(n), uy(n), uz(n), c(n);
   for (size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d p = ToEigen(mesh.point(VertexHandle(static_cast<int>(i))));
+    const Eigen::Vector3d p = ToEigen(mesh.point(VertexHandle(static_cast<int>(i)))) + state.origin;  // file's
     x[i] = p.x(), y[i] = p.y(), z[i] = p.z();
     load[i] = frame.vertex_load[i];
     const NodeVector& u = per_vertex.displacement[i];
@@ -184,9 +184,12 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   PQ_RETURN_IF_ERROR(WriteColumnTable(state->analysis.members, out->Path("analysis/members.csv")));
   PQ_RETURN_IF_ERROR(
       WriteStructuralChecks(*state->surface, state->shell.mesh, frame, checks, state->config.guidance.source, out));
-  if (state->config.analysis.export_calculix)
-    PQ_RETURN_IF_ERROR(WriteCalculixModel(model, state->config.analysis,
+  if (state->config.analysis.export_calculix) {
+    FrameModel in_file_frame = model;  // the deck in the file's coordinates
+    for (auto& p : in_file_frame.nodes) p += state->origin;
+    PQ_RETURN_IF_ERROR(WriteCalculixModel(in_file_frame, state->config.analysis,
                                           checks.buckling.buckles ? state->config.analysis.buckling_modes : 0, out));
+  }
   return WriteComplianceFigure(*state->surface, state->shell.mesh, per_vertex.compliance, 0.0,
                                "Nodal compliance of the grid shell (" + state->config.guidance.source + " guidance)",
                                out->Path("figures/compliance.svg"));

@@ -155,8 +155,8 @@ Status RunExtractStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
 
   PolyMesh coloured = quads.mesh;
   ColourByPlanarity(&coloured);
-  PQ_RETURN_IF_ERROR(WriteMesh(quads.mesh, out->Path("quads_initial.obj")));
-  PQ_RETURN_IF_ERROR(WriteMesh(coloured, out->Path("quads_initial.ply")));
+  PQ_RETURN_IF_ERROR(WriteMesh(quads.mesh, out->Path("quads_initial.obj"), state->origin));
+  PQ_RETURN_IF_ERROR(WriteMesh(coloured, out->Path("quads_initial.ply"), state->origin));
 
   LOG(INFO) << "extract: " << m.n_vertices << " vertices, " << m.n_faces << " faces, " << 100.0 * m.quad_fraction
             << " % quads (" << m.interior_non_quads.size() << " non-quads off the boundary), edges "

@@ -19,11 +19,11 @@ namespace pqlayout {
 
 namespace {
 
-Status WriteGuidanceOutputs(const SurfaceModel& surface, const std::vector<double>& v_z, const GuidanceField& g,
-                            OutputFiles* out) {
+Status WriteGuidanceOutputs(const SurfaceModel& surface, const Eigen::Vector3d& origin, const std::vector<double>& v_z,
+                            const GuidanceField& g, OutputFiles* out) {
   std::vector<double> x(surface.num_vertices()), y(x.size()), z(x.size()), zero(x.size(), 0.0);
   for (int v = 0; v < surface.num_vertices(); ++v) {
-    const Eigen::Vector3d p = surface.position(v);
+    const Eigen::Vector3d p = surface.position(v) + origin;  // the file's coordinates
     x[v] = p.x(), y[v] = p.y(), z[v] = p.z();
   }
   PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "x", "y", "z", "vx", "vy", "vz"}, {&x, &y, &z, &zero, &zero, &v_z},
@@ -120,7 +120,7 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
             << (*metrics)["singularities"]["by_index"].dump()
             << ", " << (*metrics)["n_sources"] << " sources (minima of the field's magnitude)";
   if (state->config.output.fields) {
-    PQ_RETURN_IF_ERROR(WriteGuidanceOutputs(surface, v_z, g, out));
+    PQ_RETURN_IF_ERROR(WriteGuidanceOutputs(surface, state->origin, v_z, g, out));
     PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
   }
   const bool strain = options.source == "strain";

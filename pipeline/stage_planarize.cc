@@ -14,8 +14,9 @@
 
 namespace pqlayout {
 
-Status WriteShellMesh(const PolyMesh& shell, double target_delta, OutputFiles* out, const std::string& name) {
-  PQ_RETURN_IF_ERROR(WriteMesh(shell, out->Path(name + ".obj")));
+Status WriteShellMesh(const PolyMesh& shell, double target_delta, const Eigen::Vector3d& origin, OutputFiles* out,
+                      const std::string& name) {
+  PQ_RETURN_IF_ERROR(WriteMesh(shell, out->Path(name + ".obj"), origin));
   PolyMesh mesh = shell;
   mesh.request_face_colors();
   const std::vector<double> delta = FacePlanarity(mesh);
@@ -23,7 +24,7 @@ Status WriteShellMesh(const PolyMesh& shell, double target_delta, OutputFiles* o
     const double t = std::clamp(delta[f.idx()] / (10.0 * target_delta), 0.0, 1.0);
     mesh.set_color(f, OpenMesh::Vec3uc(static_cast<unsigned char>(255 * t), 64, static_cast<unsigned char>(255 * (1 - t))));
   }
-  return WriteMesh(mesh, out->Path(name + ".ply"));
+  return WriteMesh(mesh, out->Path(name + ".ply"), origin);
 }
 
 // The planarity figure's title: what the panels are, and how many planarisation folded.
@@ -106,8 +107,8 @@ Status RunPlanarizeStage(PipelineState* state, OutputFiles* out, nlohmann::json*
   }
   PolyMesh& mesh = state->planarized.mesh;
   const double target = state->config.planarize.target_delta;
-  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads_planarized"));
-  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads"));  // the final mesh until stiffen replaces it
+  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, state->origin, out, "quads_planarized"));
+  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, state->origin, out, "quads"));  // the final mesh until stiffen replaces it
   FigureOptions figure;
   figure.marked_faces = report.folded_face_ids;
   figure.marked_label = figure.marked_faces.size() == 1 ? "panel folded by planarisation" : "panels folded by planarisation";

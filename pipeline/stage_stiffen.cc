@@ -105,7 +105,7 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
                  << options.tolerance << " m: planarize left it there, and stiffen moves such a vertex only inwards (or "
                     "holds it: boundary, no room)";
   const PolyMesh& mesh = state->shell.mesh;
-  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, out, "quads"));
+  PQ_RETURN_IF_ERROR(WriteShellMesh(mesh, target, state->origin, out, "quads"));
   PQ_RETURN_IF_ERROR(WriteOffsetFigure(*state->surface, mesh, report.normal_offset, options.tolerance,
                                        "Normal offset of the stiffened shell from the planarised one",
                                        out->Path("figures/offset.svg")));

@@ -36,6 +36,8 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
 
 // What planarize and stiffen both write (stage_planarize.cc): NAME.obj and NAME.ply (faces
 // coloured by δ: blue at 0, red at ≥ 10 × target).
-Status WriteShellMesh(const PolyMesh& mesh, double target_delta, OutputFiles* out, const std::string& name);
+// origin: PipelineState::origin (the files are in the surface file's coordinates).
+Status WriteShellMesh(const PolyMesh& mesh, double target_delta, const Eigen::Vector3d& origin, OutputFiles* out,
+                      const std::string& name);
 
 }  // namespace pqlayout

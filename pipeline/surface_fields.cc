@@ -21,7 +21,7 @@ Status WriteSurfaceFieldsVtk(const PipelineState& state, OutputFiles* out) {
     fields.vertex_scalars.push_back({"phi", state.levelsets.phi});
     fields.vertex_scalars.push_back({"psi", state.levelsets.psi});
   }
-  return WriteFieldsVtk(surface, fields, out->Path("fields.vtk"));
+  return WriteFieldsVtk(surface, fields, out->Path("fields.vtk"), state.origin);
 }
 
 }  // namespace pqlayout

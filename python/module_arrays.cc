@@ -25,25 +25,28 @@ py::array_t<double> Points(size_t n, PointOf point_of) {
   return array;
 }
 
-py::dict SurfaceDict(const SurfaceModel& surface) {
+py::dict SurfaceDict(const SurfaceModel& surface, const Eigen::Vector3d& origin) {
   py::array_t<int64_t> faces({static_cast<py::ssize_t>(surface.num_faces()), py::ssize_t{3}});
   auto f = faces.mutable_unchecked<2>();
   for (int i = 0; i < surface.num_faces(); ++i)
     for (int k = 0; k < 3; ++k) f(i, k) = surface.face_vertices(i)[k];
   py::dict d;
-  d["vertices"] = Points(surface.num_vertices(), [&](size_t v) { return surface.position(static_cast<int>(v)); });
+  d["vertices"] = Points(surface.num_vertices(), [&](size_t v) { return Eigen::Vector3d(surface.position(static_cast<int>(v)) + origin); });
   d["faces"] = faces;
   return d;
 }
 
-py::dict GridDict(const PolyMesh& mesh) {
+// Points are in the surface file's coordinates (origin: PipelineState::origin), as in the files.
+py::dict GridDict(const PolyMesh& mesh, const Eigen::Vector3d& origin) {
   std::vector<int64_t> offsets = {0}, indices;
   for (const auto f : mesh.faces()) {
     for (const auto v : mesh.fv_range(f)) indices.push_back(v.idx());
     offsets.push_back(static_cast<int64_t>(indices.size()));
   }
   py::dict d;
-  d["vertices"] = Points(mesh.n_vertices(), [&](size_t v) { return ToEigen(mesh.point(VertexHandle(static_cast<int>(v)))); });
+  d["vertices"] = Points(mesh.n_vertices(), [&](size_t v) {
+    return Eigen::Vector3d(ToEigen(mesh.point(VertexHandle(static_cast<int>(v)))) + origin);
+  });
   d["face_offsets"] = py::array_t<int64_t>(static_cast<py::ssize_t>(offsets.size()), offsets.data());
   d["face_vertices"] = py::array_t<int64_t>(static_cast<py::ssize_t>(indices.size()), indices.data());
   return d;
@@ -78,13 +81,13 @@ py::dict StateToDict(const PipelineState& state, const std::vector<std::string>&
   const auto ran = [&](const char* stage) { return std::find(completed.begin(), completed.end(), stage) != completed.end(); };
   py::dict d;
   if (!state.surface) return d;
-  d["surface"] = SurfaceDict(*state.surface);
+  d["surface"] = SurfaceDict(*state.surface, state.origin);
   d["fields"] = FieldsDict(state, ran("membrane"), ran("guidance"), ran("levelset"));
-  if (ran("extract")) d["quads_initial"] = GridDict(state.quads.mesh);
-  if (ran("planarize")) d["quads_planarized"] = GridDict(state.planarized.mesh);
+  if (ran("extract")) d["quads_initial"] = GridDict(state.quads.mesh, state.origin);
+  if (ran("planarize")) d["quads_planarized"] = GridDict(state.planarized.mesh, state.origin);
   // quads: the final grid, as quads.obj (planarize writes it, stiffen replaces it).
-  if (ran("stiffen")) d["quads"] = GridDict(state.shell.mesh);
-  else if (ran("planarize")) d["quads"] = GridDict(state.planarized.mesh);
+  if (ran("stiffen")) d["quads"] = GridDict(state.shell.mesh, state.origin);
+  else if (ran("planarize")) d["quads"] = GridDict(state.planarized.mesh, state.origin);
   if (ran("analyze")) {
     py::dict analysis;
     analysis["nodes"] = TableDict(state.analysis.nodes);
