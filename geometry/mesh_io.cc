@@ -172,10 +172,13 @@ Status PrepareSurfaceSoup(const std::string& path, PolygonSoup* soup, double wel
   for (const auto& face : soup->faces)
     for (const int v : face)
       if (v >= 0 && v < static_cast<int>(used.size())) used[v] = 1;
+  std::string precision_warning;
+  PQ_RETURN_IF_ERROR(CheckCoordinatePrecision(*soup, &precision_warning).WithContext(path));
   if (const int split = SplitQuads(soup); split > 0)
     LOG(INFO) << path << ": " << split << " quads split into two triangles along their shorter diagonal";
   const SoupRepairs repairs = RepairSurfaceSoup(soup, weld_tolerance);
   PQ_RETURN_IF_ERROR(ValidateSurfaceSoup(*soup).WithContext(path));  // one line if refused, no warnings first
+  if (!precision_warning.empty()) LOG(WARNING) << path << ": " << precision_warning;
   if (repairs.welded > 0)
     LOG(WARNING) << path << ": welded " << repairs.welded << " boundary vertices onto others within " << repairs.tolerance
                  << " m (an unwelded seam: the surface was cut open along it)";

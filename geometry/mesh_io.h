@@ -21,6 +21,7 @@ namespace pqlayout {
 struct PolygonSoup {
   std::vector<Eigen::Vector3d> points;
   std::vector<std::vector<int>> faces;
+  bool single_precision = false;  // the file stores binary float32 coordinates (binary STL or PLY)
 };
 
 // File extensions (lower case, with dot) that ReadPolygonSoup accepts.

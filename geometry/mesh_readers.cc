@@ -239,6 +239,7 @@ uint32_t LittleEndian32(const std::string& bytes, size_t at) {
 // 80-byte header, uint32 triangle count, then per triangle: normal, three corners (float32 x
 // 3 each, little endian) and a 2-byte attribute.
 Status ReadBinaryStl(const std::string& path, const std::string& bytes, uint32_t n_triangles, PolygonSoup* soup) {
+  soup->single_precision = true;
   StlVertices vertices(soup);
   soup->faces.reserve(n_triangles);
   for (uint32_t t = 0; t < n_triangles; ++t) {

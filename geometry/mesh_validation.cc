@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iomanip>
 #include <numeric>
 #include <sstream>
 
@@ -149,6 +150,41 @@ Status CheckManifold(const PolygonSoup& soup) {
 }
 
 }  // namespace
+
+Status CheckCoordinatePrecision(const PolygonSoup& soup, std::string* warning) {
+  if (!soup.single_precision) return Status::Ok();
+  const int nv = static_cast<int>(soup.points.size());
+  double largest = 0.0, edges = 0.0;
+  long count = 0;
+  for (const auto& face : soup.faces) {
+    if (face.size() < 3 || std::any_of(face.begin(), face.end(), [nv](int v) { return v < 0 || v >= nv; })) continue;
+    for (size_t k = 0; k < face.size(); ++k) {
+      const Eigen::Vector3d& p = soup.points[face[k]];
+      largest = std::max(largest, p.cwiseAbs().maxCoeff());
+      edges += (soup.points[face[(k + 1) % face.size()]] - p).norm();
+      ++count;
+    }
+  }
+  if (count == 0 || !std::isfinite(largest) || !(edges > 0.0)) return Status::Ok();
+  const float at = static_cast<float>(largest);
+  const double spacing = static_cast<double>(std::nextafter(at, INFINITY)) - static_cast<double>(at);
+  const double mean_edge = edges / static_cast<double>(count);
+  auto num = [](double v) {  // whole metres from 1 km, else three digits
+    std::ostringstream s;
+    if (v >= 1e3 && v < 1e12) s << std::llround(v);
+    else s << std::setprecision(3) << v;
+    return s.str();
+  };
+  const std::string what = "float32 coordinates " + num(largest) + " m from the origin are " + num(spacing) +
+                           " m apart, " + num(100.0 * spacing / mean_edge) + " % of the mean edge (" + num(mean_edge) +
+                           " m)";
+  if (spacing > 1e-2 * mean_edge)
+    return Status::InvalidInput(what + ": the roof's shape is lost; export it near the origin (a local base point) "
+                                "or as OBJ or PLY with double coordinates");
+  if (spacing > 1e-4 * mean_edge && warning)
+    *warning = what + ": export it near the origin or with double coordinates for a faithful shape";
+  return Status::Ok();
+}
 
 Status ValidateSurfaceSoup(const PolygonSoup& soup) {
   if (soup.faces.empty()) return Status::InvalidInput("the mesh is empty (no faces)");

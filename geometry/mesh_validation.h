@@ -18,4 +18,11 @@ namespace pqlayout {
 //   triangles do not form a single fan); a mesh without boundary.
 Status ValidateSurfaceSoup(const PolygonSoup& soup);
 
+// For a soup read from binary float32 coordinates (binary STL or PLY): their spacing near the
+// largest coordinate, against the mean edge length. Georeferenced coordinates in float32 lose
+// the roof's shape (at 5,000 km they are 0.5 m apart): InvalidInput when the spacing exceeds
+// 1 % of the mean edge; *warning (may be null) set from 0.01 % (0.1 mm on 1 m edges). Faces
+// with an index out of range are skipped (validation names them).
+Status CheckCoordinatePrecision(const PolygonSoup& soup, std::string* warning);
+
 }  // namespace pqlayout

@@ -336,6 +336,11 @@ Status ReadPlySoup(const std::string& path, PolygonSoup* soup) {
   PQ_RETURN_IF_ERROR(ReadPlyHeader(path, bytes, &header));
   long long n_vertices = 0;
   PQ_RETURN_IF_ERROR(AssignPlyRoles(path, &header, &n_vertices));
+  for (const PlyElement& element : header.elements)
+    for (const PlyProperty& p : element.properties)
+      if (p.role >= PlyRole::kX && p.role <= PlyRole::kZ && p.type.kind == PlyKind::kFloat && p.type.size == 4 &&
+          header.format != PlyFormat::kAscii)
+        soup->single_precision = true;
   const std::string_view body = std::string_view(bytes).substr(header.body_offset);
   PQ_RETURN_IF_ERROR(CheckPlyCounts(path, header, body.size()));
   for (const PlyElement& element : header.elements) {

@@ -12,12 +12,16 @@
 namespace pqlayout {
 namespace {
 
+// Coordinates beyond this are refused by validation (a unit mistake); the repairs' grid keys
+// (coordinate / cell) must not overflow either.
+constexpr double kMaxCoordinate = 1e8;
+
 bool Repairable(const PolygonSoup& soup) {
   const int nv = static_cast<int>(soup.points.size());
   for (const auto& face : soup.faces) {
     if (face.size() != 3) return false;
     for (const int v : face)
-      if (v < 0 || v >= nv || !soup.points[v].allFinite()) return false;
+      if (v < 0 || v >= nv || !(soup.points[v].cwiseAbs().maxCoeff() <= kMaxCoordinate)) return false;
     if (face[0] == face[1] || face[1] == face[2] || face[2] == face[0]) return false;
   }
   return !soup.faces.empty();
@@ -95,6 +99,7 @@ int ZipOnePass(PolygonSoup* soup, const std::vector<BoundaryEdge>& edges, double
   double cell = 0.0;
   for (const auto& e : edges) cell = std::max(cell, (soup->points[e.b] - soup->points[e.a]).norm());
   cell = std::max(cell, tol) * 1.01;
+  if (!(cell > kMaxCoordinate * 1e-12)) return 0;  // every edge shorter than 1e-4 m at 1e8 m: degenerate, left to validation
   using Key = std::array<long long, 3>;
   auto key = [&](const Eigen::Vector3d& p) {
     return Key{std::llround(std::floor(p.x() / cell)), std::llround(std::floor(p.y() / cell)),
