@@ -109,8 +109,9 @@ int ZipOnePass(PolygonSoup* soup, const std::vector<BoundaryEdge>& edges, double
   for (size_t i = 0; i < edges.size(); ++i) {
     const Eigen::Vector3d& a = soup->points[edges[i].a];
     const Eigen::Vector3d& b = soup->points[edges[i].b];
-    const Key lo = key(a.cwiseMin(b) - Eigen::Vector3d::Constant(cell * 0.01));
-    const Key hi = key(a.cwiseMax(b) + Eigen::Vector3d::Constant(cell * 0.01));
+    const double reach = std::max(tol, 0.01 * cell);  // how far off the edge a vertex may lie, and then some
+    const Key lo = key(a.cwiseMin(b) - Eigen::Vector3d::Constant(reach));
+    const Key hi = key(a.cwiseMax(b) + Eigen::Vector3d::Constant(reach));
     for (long long x = lo[0]; x <= hi[0]; ++x)
       for (long long y = lo[1]; y <= hi[1]; ++y)
         for (long long z = lo[2]; z <= hi[2]; ++z) grid[{x, y, z}].push_back(static_cast<int>(i));
