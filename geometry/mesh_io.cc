@@ -4,6 +4,8 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 
 #include <glog/logging.h>
 
@@ -177,7 +179,14 @@ Status PrepareSurfaceSoup(const std::string& path, PolygonSoup* soup, double wel
   if (const int split = SplitQuads(soup); split > 0)
     LOG(INFO) << path << ": " << split << " quads split into two triangles along their shorter diagonal";
   const SoupRepairs repairs = RepairSurfaceSoup(soup, weld_tolerance);
-  PQ_RETURN_IF_ERROR(ValidateSurfaceSoup(*soup).WithContext(path));  // one line if refused, no warnings first
+  if (const Status valid = ValidateSurfaceSoup(*soup); !valid.ok()) {  // one line if refused, no warnings first
+    const double suggested = SuggestWeldTolerance(*soup);
+    if (!(suggested > repairs.tolerance)) return valid.WithContext(path);
+    std::ostringstream hint;
+    hint << std::setprecision(2) << "; boundary vertices lie up to " << suggested << " m off the other side's edges: "
+         << "surface.weld_tolerance: " << 1.5 * suggested << " closes those T-junctions";
+    return Status::InvalidInput(valid.message() + hint.str()).WithContext(path);
+  }
   if (!precision_warning.empty()) LOG(WARNING) << path << ": " << precision_warning;
   if (repairs.welded > 0)
     LOG(WARNING) << path << ": welded " << repairs.welded << " boundary vertices onto others within " << repairs.tolerance

@@ -91,31 +91,74 @@ int WeldBoundary(PolygonSoup* soup, const std::vector<BoundaryEdge>& edges, doub
   return welded;
 }
 
-// Where a boundary vertex v lies on the interior of boundary edge e (not one of v's own
-// triangles), e's triangle is split at v. At most one edge per triangle a pass: the caller
-// repeats until nothing changes.
+// The boundary edges in a grid of cells as large as the longest of them, each edge in every
+// cell its bounding box, widened by `reach`, touches: the edges near a point are those of the
+// point's cell.
+class BoundaryEdgeGrid {
+ public:
+  BoundaryEdgeGrid(const PolygonSoup& soup, const std::vector<BoundaryEdge>& edges, double reach_at_least)
+      : soup_(soup), edges_(edges) {
+    for (const auto& e : edges) cell_ = std::max(cell_, (soup.points[e.b] - soup.points[e.a]).norm());
+    cell_ = std::max(cell_, reach_at_least) * 1.01;
+    // Every edge shorter than 1e-4 m at 1e8 m: degenerate, left to validation.
+    if (!(cell_ > kMaxCoordinate * 1e-12)) return;
+    const double reach = std::max(reach_at_least, 0.05 * cell_);
+    for (size_t i = 0; i < edges.size(); ++i) {
+      const Eigen::Vector3d& a = soup.points[edges[i].a];
+      const Eigen::Vector3d& b = soup.points[edges[i].b];
+      const Key lo = KeyOf(a.cwiseMin(b) - Eigen::Vector3d::Constant(reach));
+      const Key hi = KeyOf(a.cwiseMax(b) + Eigen::Vector3d::Constant(reach));
+      for (long long x = lo[0]; x <= hi[0]; ++x)
+        for (long long y = lo[1]; y <= hi[1]; ++y)
+          for (long long z = lo[2]; z <= hi[2]; ++z) grid_[{x, y, z}].push_back(static_cast<int>(i));
+    }
+  }
+
+  struct Hit {
+    int edge = -1;
+    double t = 0.0, distance = INFINITY;
+  };
+  // The boundary edge whose interior lies nearest to vertex v, not more than
+  // max(tol, relative × its length) off it, at least tol from its ends and not on one of v's
+  // triangles (edge -1 if none). relative ≤ 0.05.
+  Hit Nearest(int v, double tol, double relative) const {
+    Hit best;
+    const auto found = grid_.find(KeyOf(soup_.points[v]));
+    if (found == grid_.end()) return best;
+    const Eigen::Vector3d& p = soup_.points[v];
+    for (const int i : found->second) {
+      const auto& face = soup_.faces[edges_[i].face];
+      if (std::count(face.begin(), face.end(), v)) continue;
+      const Eigen::Vector3d& a = soup_.points[edges_[i].a];
+      const Eigen::Vector3d ab = soup_.points[edges_[i].b] - a;
+      const double t = (p - a).dot(ab) / ab.squaredNorm();
+      if (!(t > 0.0 && t < 1.0)) continue;
+      const double distance = (a + t * ab - p).norm(), length = ab.norm();
+      if (distance > std::max(tol, relative * length) || t * length <= tol || (1.0 - t) * length <= tol) continue;
+      if (distance < best.distance) best = {i, t, distance};
+    }
+    return best;
+  }
+
+ private:
+  using Key = std::array<long long, 3>;
+  Key KeyOf(const Eigen::Vector3d& p) const {
+    return Key{std::llround(std::floor(p.x() / cell_)), std::llround(std::floor(p.y() / cell_)),
+               std::llround(std::floor(p.z() / cell_))};
+  }
+
+  const PolygonSoup& soup_;
+  const std::vector<BoundaryEdge>& edges_;
+  double cell_ = 0.0;
+  std::map<Key, std::vector<int>> grid_;
+};
+
+// Where a boundary vertex v lies on the interior of boundary edge e (within max(tol, 1e-3 ×
+// its length), not one of v's triangles), e's triangle is split at v. At most one edge per
+// triangle a pass: the caller repeats until nothing changes.
 int ZipOnePass(PolygonSoup* soup, const std::vector<BoundaryEdge>& edges, double tol) {
   if (edges.empty()) return 0;
-  double cell = 0.0;
-  for (const auto& e : edges) cell = std::max(cell, (soup->points[e.b] - soup->points[e.a]).norm());
-  cell = std::max(cell, tol) * 1.01;
-  if (!(cell > kMaxCoordinate * 1e-12)) return 0;  // every edge shorter than 1e-4 m at 1e8 m: degenerate, left to validation
-  using Key = std::array<long long, 3>;
-  auto key = [&](const Eigen::Vector3d& p) {
-    return Key{std::llround(std::floor(p.x() / cell)), std::llround(std::floor(p.y() / cell)),
-               std::llround(std::floor(p.z() / cell))};
-  };
-  std::map<Key, std::vector<int>> grid;  // every cell an edge's bounding box touches
-  for (size_t i = 0; i < edges.size(); ++i) {
-    const Eigen::Vector3d& a = soup->points[edges[i].a];
-    const Eigen::Vector3d& b = soup->points[edges[i].b];
-    const double reach = std::max(tol, 0.01 * cell);  // how far off the edge a vertex may lie, and then some
-    const Key lo = key(a.cwiseMin(b) - Eigen::Vector3d::Constant(reach));
-    const Key hi = key(a.cwiseMax(b) + Eigen::Vector3d::Constant(reach));
-    for (long long x = lo[0]; x <= hi[0]; ++x)
-      for (long long y = lo[1]; y <= hi[1]; ++y)
-        for (long long z = lo[2]; z <= hi[2]; ++z) grid[{x, y, z}].push_back(static_cast<int>(i));
-  }
+  const BoundaryEdgeGrid grid(*soup, edges, tol);
   // Per edge, the vertices to insert with their parameter along it.
   std::map<int, std::vector<std::pair<double, int>>> inserts;
   std::vector<char> done(soup->points.size(), 0);
@@ -123,24 +166,7 @@ int ZipOnePass(PolygonSoup* soup, const std::vector<BoundaryEdge>& edges, double
     const int v = boundary.a;
     if (done[v]) continue;
     done[v] = 1;
-    const Eigen::Vector3d& p = soup->points[v];
-    auto found = grid.find(key(p));
-    if (found == grid.end()) continue;
-    int best = -1;
-    double best_distance = INFINITY, best_t = 0.0;
-    for (const int i : found->second) {
-      const auto& face = soup->faces[edges[i].face];
-      if (std::count(face.begin(), face.end(), v)) continue;
-      const Eigen::Vector3d& a = soup->points[edges[i].a];
-      const Eigen::Vector3d ab = soup->points[edges[i].b] - a;
-      const double t = (p - a).dot(ab) / ab.squaredNorm();
-      if (!(t > 0.0 && t < 1.0)) continue;
-      const double distance = (a + t * ab - p).norm();
-      const double length = ab.norm();
-      if (distance > std::max(tol, 1e-3 * length) || t * length <= tol || (1.0 - t) * length <= tol) continue;
-      if (distance < best_distance) best = i, best_distance = distance, best_t = t;
-    }
-    if (best >= 0) inserts[best].emplace_back(best_t, v);
+    if (const auto hit = grid.Nearest(v, tol, 1e-3); hit.edge >= 0) inserts[hit.edge].emplace_back(hit.t, v);
   }
   std::vector<char> face_split(soup->faces.size(), 0);
   int zipped = 0;
@@ -217,6 +243,20 @@ bool OrientParts(PolygonSoup* soup, const std::vector<EdgeUse>& uses, SoupRepair
 }
 
 }  // namespace
+
+double SuggestWeldTolerance(const PolygonSoup& soup) {
+  if (!Repairable(soup)) return 0.0;
+  const auto edges = BoundaryEdges(SortedEdgeUses(soup));
+  const BoundaryEdgeGrid grid(soup, edges, 0.0);
+  double farthest = 0.0;
+  std::vector<char> done(soup.points.size(), 0);
+  for (const auto& boundary : edges) {
+    if (done[boundary.a]) continue;
+    done[boundary.a] = 1;
+    if (const auto hit = grid.Nearest(boundary.a, 0.0, 0.05); hit.edge >= 0) farthest = std::max(farthest, hit.distance);
+  }
+  return farthest;
+}
 
 SoupRepairs RepairSurfaceSoup(PolygonSoup* soup, double weld_tolerance) {
   SoupRepairs repairs;

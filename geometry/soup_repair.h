@@ -33,4 +33,10 @@ struct SoupRepairs {
 // weld_tolerance > 0 replaces the default 1e-6 × diagonal (a CAD tessellation tolerance).
 SoupRepairs RepairSurfaceSoup(PolygonSoup* soup, double weld_tolerance = 0.0);
 
+// For a soup that still fails validation after the repairs: the farthest any boundary vertex
+// lies off the interior of another side's boundary edge, counting only those within 5 % of
+// that edge's length (a seam curved in elevation, tessellated coarsely on one side); 0 if
+// none. A weld_tolerance of at least this closes every such T-junction.
+double SuggestWeldTolerance(const PolygonSoup& soup);
+
 }  // namespace pqlayout

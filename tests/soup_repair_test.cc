@@ -194,8 +194,8 @@ PolygonSoup TwoPatchDome() {
   return soup;
 }
 
-// Through the executable: refused in one line naming the key that mends it; with the export's
-// tolerance, read as one roof with one outline.
+// Through the executable: refused in one line naming the key that mends it and its value; with
+// that tolerance, read as one roof with one outline.
 TEST(SoupRepairCli, ACurvedSeamWithTJunctionsNeedsTheExportsToleranceAndThenIsOneRoof) {
   const auto dir = testing::TempDir();
   testing::WriteFile(dir, "dome.obj", testing::ObjText(TwoPatchDome()));
@@ -204,10 +204,15 @@ TEST(SoupRepairCli, ACurvedSeamWithTJunctionsNeedsTheExportsToleranceAndThenIsOn
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(testing::CountLines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("dome.obj: non-manifold vertex"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("raise surface.weld_tolerance"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/refused"));
+  // It measures how far the T-junctions lie off the other side's chords and names the value.
+  const std::string key = "surface.weld_tolerance: ";
+  const size_t at = r.err.find("m off the other side's edges: " + key);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const std::string suggested = r.err.substr(r.err.find(key, at) + key.size(), 5);
+  EXPECT_EQ(suggested, "0.031");  // 1.5 × the farthest, 0.021 m: 1.4 % of a 1.5 m chord
 
-  r = testing::RunPqlayout(dir, "run c.yaml --out result --until surface -q --set surface.weld_tolerance=0.05");
+  r = testing::RunPqlayout(dir, "run c.yaml --out result --until surface -q --set surface.weld_tolerance=" + suggested);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(testing::ReadFile(dir + "/result/report.json"));
   const auto& s = report["stages"]["surface"];
