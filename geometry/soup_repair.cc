@@ -21,7 +21,8 @@ bool Repairable(const PolygonSoup& soup) {
   for (const auto& face : soup.faces) {
     if (face.size() != 3) return false;
     for (const int v : face)
-      if (v < 0 || v >= nv || !(soup.points[v].cwiseAbs().maxCoeff() <= kMaxCoordinate)) return false;
+      if (v < 0 || v >= nv || !soup.points[v].allFinite() || !(soup.points[v].cwiseAbs().maxCoeff() <= kMaxCoordinate))
+        return false;  // (maxCoeff may skip a NaN: allFinite first)
     if (face[0] == face[1] || face[1] == face[2] || face[2] == face[0]) return false;
   }
   return !soup.faces.empty();
@@ -108,6 +109,7 @@ class BoundaryEdgeGrid {
       const Eigen::Vector3d& b = soup.points[edges[i].b];
       const Key lo = KeyOf(a.cwiseMin(b) - Eigen::Vector3d::Constant(reach));
       const Key hi = KeyOf(a.cwiseMax(b) + Eigen::Vector3d::Constant(reach));
+      if (hi[0] - lo[0] > 3 || hi[1] - lo[1] > 3 || hi[2] - lo[2] > 3) continue;  // cannot be: cells ≥ every edge
       for (long long x = lo[0]; x <= hi[0]; ++x)
         for (long long y = lo[1]; y <= hi[1]; ++y)
           for (long long z = lo[2]; z <= hi[2]; ++z) grid_[{x, y, z}].push_back(static_cast<int>(i));

@@ -156,6 +156,28 @@ TEST(SoupRepair, NeighboursOnOneTriangleAndSeparateRoofsAreNotWelded) {
   EXPECT_EQ(soup.faces.back(), (std::vector<int>{2, 9, 5}));
 }
 
+// A fuzzed PLY (vertex (1.4e-309, NaN, -1e6)) took 8.8 s to be refused: Eigen's maxCoeff
+// skipped the NaN, and the grid of boundary edges looped over cells from floor(NaN).
+TEST(SoupRepair, ANonFiniteCoordinateIsLeftForValidationAtOnce) {
+  PolygonSoup fuzzed;  // the fuzzer's file, as read
+  fuzzed.points = {{0, 0, 0}, {1, 0, 0}, {1.0000000000000018, 0, 0}, {1.0002441406251157, 6.365987373e-314, 4.243991582e-314},
+                   {1.39067116156826e-309, NAN, -1048448.0}, {2.0, 0.005221755730531186, 0}};
+  fuzzed.faces = {{0, 1, 2}, {0, 2, 3}, {1, 4, 5}, {1, 5, 2}};
+  const auto fuzzed_faces = fuzzed.faces;
+  EXPECT_EQ(RepairSurfaceSoup(&fuzzed).welded, 0);
+  EXPECT_EQ(fuzzed.faces, fuzzed_faces);
+  for (const Eigen::Vector3d bad : {Eigen::Vector3d(1.39067e-309, NAN, -1.04845e6), Eigen::Vector3d(1, NAN, 0),
+                                    Eigen::Vector3d(INFINITY, 0, 0), Eigen::Vector3d(1e300, 0, 0)}) {
+    PolygonSoup soup = testing::FlatGridSoup(2);
+    soup.points[2] = bad;  // a corner: on the boundary
+    const auto faces = soup.faces;
+    const SoupRepairs r = RepairSurfaceSoup(&soup);
+    EXPECT_EQ(r.welded + r.zipped + r.flipped, 0);
+    EXPECT_EQ(soup.faces, faces);
+    EXPECT_EQ(SuggestWeldTolerance(soup), 0.0);
+  }
+}
+
 TEST(SoupRepair, ASoupThatIsNotTrianglesIsLeftAlone) {
   PolygonSoup soup = testing::FlatGridSoup(2);
   soup.faces.push_back({0, 1, 2, 3, 4});
