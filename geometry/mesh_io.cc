@@ -38,7 +38,7 @@ constexpr int kPointDigits = 17;
 template <typename Point>
 void WritePoint(const Point& p, const Eigen::Vector3d& origin, std::ostream& out) {
   for (int k = 0; k < 3; ++k) {
-    WriteNumber(out, p[k] + origin[k], kPointDigits);
+    WriteNumber(out, origin[k] == 0.0 ? p[k] : p[k] + origin[k], kPointDigits);  // -0 stays -0
     out.put(k < 2 ? ' ' : '\n');
   }
 }

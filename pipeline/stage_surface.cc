@@ -29,8 +29,8 @@ Status LoadOrGenerate(const SurfaceOptions& options, TriMesh* mesh, std::string*
 }
 
 // A georeferenced export (national grid or UTM coordinates: a roof 30 m across at 5,000 km)
-// leaves the planarisation's face planes n·x = d ill-conditioned (d ~ 10⁶ |n|): the Great
-// Court dome at (500000, 5000000, 100) planarised with vertices moved 16 m and came out 44 %
+// leaves the planarisation's face planes n·x = d ill-conditioned (d ~ 10⁶ |n|): the corpus's
+// 24 m dome at (500000, 5000000, 100) planarised with vertices moved 16 m and came out 44 %
 // softer. Such a surface (its bounding box's centre farther from the origin than 10 of its
 // diagonals) is moved so that the centre, rounded to whole metres, is the origin; every
 // geometry file is written back at the file's coordinates. Returns the shift (zero if none).
