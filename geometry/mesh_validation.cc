@@ -42,10 +42,6 @@ Status CheckFaces(const PolygonSoup& soup) {
   return Status::Ok();
 }
 
-// Coordinates are metres; beyond this a coordinate is a unit mistake (millimetres of a
-// georeferenced model) and squared lengths start to lose every digit or overflow.
-constexpr double kMaxCoordinate = 1e8;
-
 // The vertices the faces use (unused ones are dropped later, with a warning) are finite and
 // plausible; returns their bounding box's diagonal.
 Status CheckPoints(const PolygonSoup& soup, double* diagonal) {
@@ -58,9 +54,9 @@ Status CheckPoints(const PolygonSoup& soup, double* diagonal) {
     const Eigen::Vector3d& p = soup.points[v];
     if (!p.allFinite())
       return Status::InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate " + Str(p));
-    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+    if (p.cwiseAbs().maxCoeff() > kMaxSurfaceCoordinate)
       return Status::InvalidInput("vertex " + std::to_string(v) + " is at " + Str(p) + ", more than " +
-                                  Str1(kMaxCoordinate) + " m from the origin along an axis (coordinates are metres)");
+                                  Str1(kMaxSurfaceCoordinate) + " m from the origin along an axis (coordinates are metres)");
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
@@ -186,11 +182,15 @@ Status CheckCoordinatePrecision(const PolygonSoup& soup, std::string* warning) {
   return Status::Ok();
 }
 
-Status ValidateSurfaceSoup(const PolygonSoup& soup) {
+Status CheckSoupFacesAndPoints(const PolygonSoup& soup, double* diagonal) {
   if (soup.faces.empty()) return Status::InvalidInput("the mesh is empty (no faces)");
   PQ_RETURN_IF_ERROR(CheckFaces(soup));
+  return CheckPoints(soup, diagonal);
+}
+
+Status ValidateSurfaceSoup(const PolygonSoup& soup) {
   double diagonal = 0.0;
-  PQ_RETURN_IF_ERROR(CheckPoints(soup, &diagonal));
+  PQ_RETURN_IF_ERROR(CheckSoupFacesAndPoints(soup, &diagonal));
   PQ_RETURN_IF_ERROR(CheckAreas(soup, diagonal));
   PQ_RETURN_IF_ERROR(CheckDuplicateFaces(soup));
   return CheckManifold(soup);

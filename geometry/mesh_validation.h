@@ -18,6 +18,17 @@ namespace pqlayout {
 //   triangles do not form a single fan); a mesh without boundary.
 Status ValidateSurfaceSoup(const PolygonSoup& soup);
 
+// Coordinates are metres; beyond this a coordinate is a unit mistake (millimetres of a
+// georeferenced model) and squared lengths start to lose every digit or overflow (the repairs'
+// grid keys, coordinate / cell, too).
+constexpr double kMaxSurfaceCoordinate = 1e8;
+
+// The first of those checks, which the repairs (soup_repair.h) need to hold before they run:
+// the mesh is not empty, its faces are triangles of three distinct existing vertices, and the
+// vertices they use are finite and within kMaxSurfaceCoordinate; *diagonal is set to the
+// diagonal of those vertices' bounding box.
+Status CheckSoupFacesAndPoints(const PolygonSoup& soup, double* diagonal);
+
 // For a soup read from binary float32 coordinates (binary STL or PLY): their spacing near the
 // largest coordinate, against the mean edge length. Georeferenced coordinates in float32 lose
 // the roof's shape (at 5,000 km they are 0.5 m apart): InvalidInput when the spacing exceeds

@@ -5,37 +5,21 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <tuple>
 
+#include "geometry/mesh_validation.h"
 #include "geometry/soup_edges.h"
 
 namespace pqlayout {
 namespace {
 
-// Coordinates beyond this are refused by validation (a unit mistake); the repairs' grid keys
-// (coordinate / cell) must not overflow either.
-constexpr double kMaxCoordinate = 1e8;
-
-bool Repairable(const PolygonSoup& soup) {
-  const int nv = static_cast<int>(soup.points.size());
-  for (const auto& face : soup.faces) {
-    if (face.size() != 3) return false;
-    for (const int v : face)
-      if (v < 0 || v >= nv || !soup.points[v].allFinite() || !(soup.points[v].cwiseAbs().maxCoeff() <= kMaxCoordinate))
-        return false;  // (maxCoeff may skip a NaN: allFinite first)
-    if (face[0] == face[1] || face[1] == face[2] || face[2] == face[0]) return false;
-  }
-  return !soup.faces.empty();
-}
-
-double UsedDiagonal(const PolygonSoup& soup) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-  for (const auto& face : soup.faces)
-    for (const int v : face) {
-      lo = lo.cwiseMin(soup.points[v]);
-      hi = hi.cwiseMax(soup.points[v]);
-    }
-  return (hi - lo).norm();
+// The soup the repairs can work on (validation names what is wrong with any other) and the
+// diagonal of its used vertices' bounding box; nullopt when it is not one.
+std::optional<double> RepairableDiagonal(const PolygonSoup& soup) {
+  double diagonal = 0.0;
+  if (!CheckSoupFacesAndPoints(soup, &diagonal).ok()) return std::nullopt;
+  return diagonal;
 }
 
 struct BoundaryEdge {
@@ -102,7 +86,7 @@ class BoundaryEdgeGrid {
     for (const auto& e : edges) cell_ = std::max(cell_, (soup.points[e.b] - soup.points[e.a]).norm());
     cell_ = std::max(cell_, reach_at_least) * 1.01;
     // Every edge shorter than 1e-4 m at 1e8 m: degenerate, left to validation.
-    if (!(cell_ > kMaxCoordinate * 1e-12)) return;
+    if (!(cell_ > kMaxSurfaceCoordinate * 1e-12)) return;
     const double reach = std::max(reach_at_least, 0.05 * cell_);
     for (size_t i = 0; i < edges.size(); ++i) {
       const Eigen::Vector3d& a = soup.points[edges[i].a];
@@ -247,7 +231,7 @@ bool OrientParts(PolygonSoup* soup, const std::vector<EdgeUse>& uses, SoupRepair
 }  // namespace
 
 double SuggestWeldTolerance(const PolygonSoup& soup) {
-  if (!Repairable(soup)) return 0.0;
+  if (!RepairableDiagonal(soup)) return 0.0;
   const auto edges = BoundaryEdges(SortedEdgeUses(soup));
   const BoundaryEdgeGrid grid(soup, edges, 0.0);
   double farthest = 0.0;
@@ -262,8 +246,9 @@ double SuggestWeldTolerance(const PolygonSoup& soup) {
 
 SoupRepairs RepairSurfaceSoup(PolygonSoup* soup, double weld_tolerance) {
   SoupRepairs repairs;
-  if (!Repairable(*soup)) return repairs;
-  repairs.tolerance = weld_tolerance > 0.0 ? weld_tolerance : 1e-6 * UsedDiagonal(*soup);
+  const std::optional<double> diagonal = RepairableDiagonal(*soup);
+  if (!diagonal) return repairs;
+  repairs.tolerance = weld_tolerance > 0.0 ? weld_tolerance : 1e-6 * *diagonal;
   auto uses = SortedEdgeUses(*soup);
   repairs.welded = WeldBoundary(soup, BoundaryEdges(uses), repairs.tolerance, &repairs.vertex_of);
   if (repairs.welded > 0) uses = SortedEdgeUses(*soup);
