@@ -46,11 +46,13 @@ struct FacePlane {
   Eigen::Vector3d n;
   double d;
   double mean_diagonal;
+  Eigen::Vector3d centroid;  // of the polygon's vertices; the plane passes through it
 };
 
 // Least-squares plane of a polygon {x : n.x = d} (normal from the covariance, oriented like
 // the polygon's vector area) and its mean diagonal length (mean edge length for a triangle):
-// the start of the auxiliary planes of planarize and stiffen.
+// the start of the auxiliary planes of planarize and stiffen (which measure the offset from
+// the centroid: PlanarityResidual).
 inline FacePlane FitPolygonPlane(const std::vector<Eigen::Vector3d>& polygon) {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), area = Eigen::Vector3d::Zero();
   for (const auto& p : polygon) centroid += p;
@@ -58,7 +60,7 @@ inline FacePlane FitPolygonPlane(const std::vector<Eigen::Vector3d>& polygon) {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   for (size_t i = 0; i < polygon.size(); ++i) {
     covariance += (polygon[i] - centroid) * (polygon[i] - centroid).transpose();
-    area += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+    area += (polygon[i] - centroid).cross(polygon[(i + 1) % polygon.size()] - centroid);
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance);
   Eigen::Vector3d n = eig.eigenvectors().col(0);
@@ -70,7 +72,7 @@ inline FacePlane FitPolygonPlane(const std::vector<Eigen::Vector3d>& polygon) {
       if (!(i == 0 && j == polygon.size() - 1)) diagonal += (polygon[i] - polygon[j]).norm(), ++count;
   if (count == 0)  // a triangle: use its mean edge length
     for (size_t i = 0; i < polygon.size(); ++i) diagonal += (polygon[i] - polygon[(i + 1) % polygon.size()]).norm(), ++count;
-  return {n, n.dot(centroid), diagonal / count};
+  return {n, n.dot(centroid), diagonal / count, centroid};
 }
 
 }  // namespace pqlayout

@@ -193,7 +193,8 @@ struct PlanarizeData {
   std::vector<Eigen::Vector3d> start;
   std::vector<double> position;
   std::vector<std::vector<int>> faces;
-  std::vector<std::array<double, 4>> planes;
+  std::vector<std::array<double, 4>> planes;  // n, d: n · (x − centre) = d
+  std::vector<Eigen::Vector3d> centre;         // of each face's extracted vertices
   std::vector<double> mean_diagonal;
   std::vector<std::array<int, 3>> triples;
   std::vector<std::tuple<int, int, double>> edges;
@@ -226,7 +227,8 @@ PlanarizeData PrepareData(const ExtractedMesh& extracted, const ClosestPointQuer
     for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx()), polygon.push_back(d.start[v.idx()]);
     d.faces.push_back(ids);
     const FacePlane plane = FitPolygonPlane(polygon);
-    d.planes.push_back({plane.n.x(), plane.n.y(), plane.n.z(), plane.d});
+    d.planes.push_back({plane.n.x(), plane.n.y(), plane.n.z(), 0.0});  // through the centroid
+    d.centre.push_back(plane.centroid);
     d.mean_diagonal.push_back(plane.mean_diagonal);
   }
   d.triples = PolylineTriples(mesh);
@@ -265,7 +267,7 @@ void SolveRound(const ExtractedMesh& extracted, const ClosestPointQuery& query, 
     problem.AddParameterBlock(d->planes[f].data(), 4,
                               new ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>());
     for (const int v : d->faces[f])
-      problem.AddResidualBlock(PlanarityResidual::Create(rw.planarity, d->mean_diagonal[f]), nullptr,
+      problem.AddResidualBlock(PlanarityResidual::Create(rw.planarity, d->mean_diagonal[f], d->centre[f]), nullptr,
                                d->planes[f].data(), &position[3 * v]);
   }
   const int nv = static_cast<int>(d->start.size());

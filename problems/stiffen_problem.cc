@@ -227,12 +227,12 @@ Status RestorePlanarity(const StiffenProblem& P, double target_delta, std::vecto
       std::vector<Vec3> polygon;
       for (const int v : P.faces[f]) polygon.push_back(xk[v]);
       const FacePlane plane = FitPolygonPlane(polygon);
-      planes[f] = {plane.n.x(), plane.n.y(), plane.n.z(), plane.d};
+      planes[f] = {plane.n.x(), plane.n.y(), plane.n.z(), 0.0};  // n · (x − centroid) = 0
       problem.AddParameterBlock(planes[f].data(), 4,
                                 new ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>());
       for (const int v : P.faces[f])
         problem.AddResidualBlock(
-            new FramedPointCost(PlanarityBudgetResidual::Create(weight, plane.mean_diagonal, budget), {nullptr, &P.frames[v]}),
+            new FramedPointCost(PlanarityBudgetResidual::Create(weight, plane.mean_diagonal, budget, plane.centroid), {nullptr, &P.frames[v]}),
             nullptr, planes[f].data(), (*q)[v].data());
     }
     ceres::Solver::Summary summary;

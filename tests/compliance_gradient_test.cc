@@ -92,7 +92,7 @@ TEST(StiffenResiduals, JacobiansMatchFiniteDifferences) {
   const std::vector<double> a{0.1, 0.2, 0.05}, b{1.1, 0.1, 0.3}, c{1.2, 1.05, -0.1}, d{0.05, 0.9, 0.2};
   ExpectJacobiansMatchFiniteDifferences("planarity (signed)", SignedPlanarityResidual::Create(), {a, b, c, d});
   const std::vector<double> plane{0.1, 0.2, 0.97467943, 0.3};
-  ExpectJacobiansMatchFiniteDifferences("planarity (budget)", PlanarityBudgetResidual::Create(1e6, 1.4, 1e-4), {plane, b});
+  ExpectJacobiansMatchFiniteDifferences("planarity (budget)", PlanarityBudgetResidual::Create(1e6, 1.4, 1e-4, Eigen::Vector3d(0.5, -0.3, 0.2)), {plane, b});
   ExpectJacobiansMatchFiniteDifferences("fairness change",
                                         FairnessChangeResidual::Create(Eigen::Vector3d(0.1, -0.2, 0.05), 0.1, 3.0), {a, b, c});
   ExpectJacobiansMatchFiniteDifferences("joint length", JointLengthResidual::Create(0.5, 1e4, 3.0), {a, b});
@@ -101,7 +101,7 @@ TEST(StiffenResiduals, JacobiansMatchFiniteDifferences) {
   frame.origin = Eigen::Vector3d(1.0, 2.0, 3.0);
   frame.rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   ExpectJacobiansMatchFiniteDifferences(
-      "framed point", new FramedPointCost(PlanarityBudgetResidual::Create(1e6, 1.4, 0.0), {nullptr, &frame}), {plane, b});
+      "framed point", new FramedPointCost(PlanarityBudgetResidual::Create(1e6, 1.4, 0.0, Eigen::Vector3d(0.5, -0.3, 0.2)), {nullptr, &frame}), {plane, b});
 }
 
 // Keeping the start's joints (grid_frame.h) gives the same frame and compliance bit for bit.
