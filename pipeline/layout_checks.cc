@@ -174,4 +174,13 @@ std::string SurfaceFrameWarning(const SurfaceFrame& frame, const std::string& so
   return "";
 }
 
+std::string CoarseReferenceWarning(double mean_edge, double h, const std::string& source) {
+  constexpr double kCoarseReference = 0.6;  // × h; the corpus's and the examples' references are ≤ 0.53 h
+  if (!(mean_edge > kCoarseReference * h)) return "";
+  return "surface: " + source + "'s triangles are coarse for panels " + Num(h) + " m apart (mean edge " + Num(mean_edge) +
+         " m, " + Num(mean_edge / h) + " h): the guidance is computed per triangle, so the layout follows the facets and "
+         "aligns worse; " + (source.rfind("generator", 0) == 0 ? "set surface.edge_length ≤ " + Num(0.5 * h)
+                                                                         : std::string("export the surface finer (mean edge ≤ 0.5 h)"));
+}
+
 }  // namespace pqlayout

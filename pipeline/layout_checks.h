@@ -49,4 +49,11 @@ Status CheckSpacingFitsSurface(const SurfaceModel& surface, const SurfaceFrame& 
 // than any roof (2 km: most likely millimetres read as metres).
 std::string SurfaceFrameWarning(const SurfaceFrame& frame, const std::string& source);
 
+// A warning for the surface stage, or "" if none: a reference whose mean edge is more than
+// 0.6 h (a CAD render mesh exported coarsely). The guidance is computed per triangle and the
+// level sets are solved on it, so the layout follows its facets: an elliptic saddle's alignment
+// was 2.8° from a fine export (0.25 h), 4.6° at a mean edge of 0.75 h and 11.4° at 1.26 h; remeshing
+// the facets finer does not bring it back (benchmarks/RESULTS.md, "Coarse references").
+std::string CoarseReferenceWarning(double mean_edge, double h, const std::string& source);
+
 }  // namespace pqlayout

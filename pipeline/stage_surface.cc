@@ -113,6 +113,8 @@ Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
       {"origin", {state->origin.x(), state->origin.y(), state->origin.z()}},
   };
   if (const std::string warning = SurfaceFrameWarning(frame, source); !warning.empty()) LOG(WARNING) << warning;
+  if (const std::string warning = CoarseReferenceWarning(quality.edge_mean, config.layout.spacing, source); !warning.empty())
+    LOG(WARNING) << warning;
   LOG(INFO) << "surface: " << source << ": " << surface.num_faces() << " triangles, "
             << surface.num_vertices() << " vertices, area " << quality.area << " m², "
             << surface.boundary_loops().size() << " boundary loop(s)"

@@ -442,6 +442,28 @@ TEST(HostileCli, ASurfaceFacingSidewaysOrKilometresAcrossIsAWarningInTheReport) 
   }
 }
 
+// A reference whose triangles are about as long as the panels (a CAD render mesh exported
+// coarsely, or a generator's edge_length left at its default under a small spacing) is a
+// warning naming its mean edge in h and the remedy for its kind; at 0.57 h (the grid under
+// h = 2 m, above) none.
+TEST(HostileCli, ACoarseReferenceIsAWarningInTheReport) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "grid.obj", testing::ObjText(FlatGridSoup(10)));  // 1 m cells: mean edge 1.13 m
+  testing::WriteFile(dir, "file.yaml", "surface:\n  file: grid.obj\nlayout:\n  spacing: 1.5\n");
+  testing::WriteFile(dir, "gen.yaml", "surface:\n  generator: great_court\nlayout:\n  spacing: 1.25\n");  // 1.09 m edges
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"file", "grid.obj's triangles are coarse for panels 1.5 m apart (mean edge 1.13 m, 0.753 h)"},
+      {"gen", "generator great_court's triangles are coarse for panels 1.25 m apart (mean edge 1.09 m, 0.868 h)"},
+      {"gen", "set surface.edge_length ≤ 0.625"}};
+  for (const auto& [name, expected] : cases) {
+    const testing::CliResult r = testing::RunPqlayout(dir, "run " + name + ".yaml --out " + name + " --until surface");
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    const auto report = nlohmann::json::parse(testing::ReadFile(dir + "/" + name + "/report.json"));
+    ASSERT_EQ(report["warnings"].size(), 1u) << name << ": " << report["warnings"];
+    EXPECT_NE(report["warnings"][0].get<std::string>().find(expected), std::string::npos) << report["warnings"][0];
+  }
+}
+
 // A render mesh of strips (0.2 m × 2.7 m triangles on a 20 m × 16 m dome, as a NURBS surface is
 // often exported) is solved on a remeshed copy, not on its slivers: directly on them the layout
 // aligned to 9.3° (target 8°) and missed the quad fraction; remeshed, 7.6° and 10 of 11 targets.
