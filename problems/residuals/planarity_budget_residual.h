@@ -2,8 +2,9 @@
 // lies within ε ℓ_f of the face's auxiliary plane {x : n_f · (x − c_f) = d_f}, and pays only
 // beyond,
 //   r_fv = √w · max(0, |n_f · (p_v − c_f) − d_f| / ℓ_f − ε)
-// ℓ_f = the face's mean diagonal, c_f a fixed point near the face (PlanarityResidual says why). A quad whose four vertices are ±e off its plane has its
-// diagonals 2e apart, δ = 2e/ℓ, so ε = δ_allowed / 2. Unlike PlanarityResidual (δ → 0), this
+// ℓ_f = the face's mean diagonal, c_f a fixed point near the face (PlanarityResidual says
+// why). A quad whose four vertices are ±e off its plane has its diagonals 2e apart, δ = 2e/ℓ,
+// so ε = δ_allowed / 2. Unlike PlanarityResidual (δ → 0), this
 // lets a shape optimisation spend the planarity tolerance the user granted
 // (planarize.target_delta) instead of holding every face at the planarised δ.
 // Parameters: plane = (n_f, d_f) (4, n_f on Ceres' SphereManifold<3>), p_v (3).
