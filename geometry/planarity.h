@@ -44,15 +44,14 @@ inline double PlanarityDelta(const std::vector<Eigen::Vector3d>& polygon) {
 
 struct FacePlane {
   Eigen::Vector3d n;
-  double d;
   double mean_diagonal;
   Eigen::Vector3d centroid;  // of the polygon's vertices; the plane passes through it
 };
 
-// Least-squares plane of a polygon {x : n.x = d} (normal from the covariance, oriented like
-// the polygon's vector area) and its mean diagonal length (mean edge length for a triangle):
-// the start of the auxiliary planes of planarize and stiffen (which measure the offset from
-// the centroid: PlanarityResidual).
+// Least-squares plane of a polygon {x : n · (x − centroid) = 0} (normal from the covariance,
+// oriented like the polygon's vector area) and its mean diagonal length (mean edge length for
+// a triangle): the start of the auxiliary planes of planarize and stiffen, whose offsets are
+// measured from the centroid (PlanarityResidual).
 inline FacePlane FitPolygonPlane(const std::vector<Eigen::Vector3d>& polygon) {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), area = Eigen::Vector3d::Zero();
   for (const auto& p : polygon) centroid += p;
@@ -72,7 +71,7 @@ inline FacePlane FitPolygonPlane(const std::vector<Eigen::Vector3d>& polygon) {
       if (!(i == 0 && j == polygon.size() - 1)) diagonal += (polygon[i] - polygon[j]).norm(), ++count;
   if (count == 0)  // a triangle: use its mean edge length
     for (size_t i = 0; i < polygon.size(); ++i) diagonal += (polygon[i] - polygon[(i + 1) % polygon.size()]).norm(), ++count;
-  return {n, n.dot(centroid), diagonal / count, centroid};
+  return {n, diagonal / count, centroid};
 }
 
 }  // namespace pqlayout

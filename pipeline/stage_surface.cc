@@ -29,9 +29,11 @@ Status LoadOrGenerate(const SurfaceOptions& options, TriMesh* mesh, std::string*
 }
 
 // A georeferenced export (national grid or UTM coordinates: a roof 30 m across at 5,000 km)
-// leaves the planarisation's face planes n·x = d ill-conditioned (d ~ 10⁶ |n|): the corpus's
+// left the planarisation's face planes n·x = d ill-conditioned (d ~ 10⁶ |n|): the corpus's
 // 24 m dome at (500000, 5000000, 100) planarised with vertices moved 16 m and came out 44 %
-// softer. Such a surface (its bounding box's centre farther from the origin than 10 of its
+// softer. The planes are now measured from their faces (PlanarityResidual), which fixes that
+// at its depth; the local frame stays because the other stages (CGAL's meshing, closest
+// points, the membrane and frame solves) have not been measured at map coordinates. Such a surface (its bounding box's centre farther from the origin than 10 of its
 // diagonals) is moved so that the centre, rounded to whole metres, is the origin; every
 // geometry file is written back at the file's coordinates. Returns the shift (zero if none).
 Eigen::Vector3d MoveToLocalFrame(TriMesh* mesh) {
