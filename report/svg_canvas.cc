@@ -120,8 +120,14 @@ SvgCanvas::SvgCanvas(const Eigen::AlignedBox2d& world, double width_px, const st
   scale_ = std::min(plot_width / size.x(), SvgStyle::kMaxAspect * plot_width / size.y());
   plot_origin_ = Eigen::Vector2d(SvgStyle::kPadding, SvgStyle::kTopBand) * u;
   plot_size_ = size * scale_;
+  // A long title (the planarity figure's counts run to ~100 characters) is set smaller so that
+  // it fits the drawing's width instead of being cut at its edge: sans-serif glyphs average
+  // ~0.55 of the font size; characters are counted, not UTF-8 bytes.
+  const double characters = static_cast<double>(
+      std::count_if(title.begin(), title.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+  const double fits = (width_ / u - 2.0 * SvgStyle::kPadding) / (0.55 * std::max(characters, 1.0));
   TextPx({SvgStyle::kPadding * u, (SvgStyle::kPadding + SvgStyle::kTitleFont) * u}, title,
-         SvgStyle::kTitleFont, "start");
+         std::min(SvgStyle::kTitleFont, fits), "start");
 }
 
 double SvgCanvas::height() const {

@@ -102,6 +102,27 @@ TEST(SvgCanvas, MapsTheWorldWithEqualAspectAndEscapesText) {
   EXPECT_EQ(svg.find("xlink:href=\"http"), std::string::npos);  // self-contained
 }
 
+// A title too long for the drawing is set smaller so that it fits its width (the planarity
+// figure's counts ran past the edge at 24 px); a short one keeps the style's size. Widths are
+// estimated at 0.55 em per character, δ counting once.
+TEST(SvgCanvas, ALongTitleIsSetSmallerToFitTheWidth) {
+  auto title_size = [](const std::string& title) {
+    const std::string svg = SvgCanvas(Eigen::AlignedBox2d(Vector2d(0, 0), Vector2d(1, 1)), 1000.0, title).ToSvg();
+    const std::smatch m = [&] {
+      std::smatch found;
+      std::regex_search(svg, found, std::regex("font-size=\"([0-9.]+)\"[^>]*>" + title.substr(0, 5)));
+      return found;
+    }();
+    return m.empty() ? -1.0 : std::stod(m[1]);
+  };
+  const double u = 1000.0 / SvgStyle::kReferenceWidth;
+  EXPECT_DOUBLE_EQ(title_size("Short title"), SvgStyle::kTitleFont * u);
+  const std::string long_title = "Planarity δ after planarisation: " + std::string(90, 'x');  // 123 characters
+  const double size = title_size(long_title);
+  EXPECT_LT(size, SvgStyle::kTitleFont * u);
+  EXPECT_NEAR(0.55 * size * 123, 1000.0 - 2 * SvgStyle::kPadding * u, 4.0);  // the size is written to 3 digits
+}
+
 class SmallMeshFigures : public ::testing::Test {
  protected:
   SmallMeshFigures()
