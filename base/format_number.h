@@ -5,7 +5,10 @@
 #pragma once
 
 #include <charconv>
+#include <cmath>
+#include <iomanip>
 #include <ostream>
+#include <sstream>
 #include <string>
 
 namespace pqlayout {
@@ -25,6 +28,16 @@ inline void AppendNumber(std::string* out, double x, int precision) {
 inline void WriteNumber(std::ostream& out, double x, int precision) {
   char buffer[64];
   out.write(buffer, FormatNumber(x, precision, buffer));
+}
+
+// A number for a message a person reads: three significant digits, whole numbers from a
+// thousand up to 10¹² without an exponent ("0.015", "6180", "4500000", "2.75e+13"), so that
+// map coordinates and metre counts read as written.
+inline std::string ReadableNumber(double v) {
+  std::ostringstream s;
+  if (std::abs(v) >= 1e3 && std::abs(v) < 1e12) s << std::llround(v);
+  else s << std::setprecision(3) << v;
+  return s.str();
 }
 
 }  // namespace pqlayout

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "base/format_number.h"
 #include "geometry/soup_edges.h"
 
 namespace pqlayout {
@@ -165,12 +166,7 @@ Status CheckCoordinatePrecision(const PolygonSoup& soup, std::string* warning) {
   const float at = static_cast<float>(largest);
   const double spacing = static_cast<double>(std::nextafter(at, INFINITY)) - static_cast<double>(at);
   const double mean_edge = edges / static_cast<double>(count);
-  auto num = [](double v) {  // whole metres from 1 km, else three digits
-    std::ostringstream s;
-    if (v >= 1e3 && v < 1e12) s << std::llround(v);
-    else s << std::setprecision(3) << v;
-    return s.str();
-  };
+  const auto num = ReadableNumber;
   const std::string what = "float32 coordinates " + num(largest) + " m from the origin are " + num(spacing) +
                            " m apart, " + num(100.0 * spacing / mean_edge) + " % of the mean edge (" + num(mean_edge) +
                            " m)";

@@ -4,22 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
+#include "base/format_number.h"
 #include "geometry/differential_operators.h"
 
 namespace pqlayout {
 namespace {
 
-// Three significant digits, whole numbers up to a billion without an exponent: "0.015",
-// "6180", "2.75e+10".
-std::string Num(double v) {
-  std::ostringstream s;
-  if (std::abs(v) >= 1e3 && std::abs(v) < 1e9) s << std::llround(v);
-  else s << std::setprecision(3) << v;
-  return s.str();
-}
+std::string Num(double v) { return ReadableNumber(v); }
 
 // v rounded to three significant digits, up or down: a bound the message suggests must
 // itself pass the check.

@@ -55,5 +55,18 @@ TEST(FormatNumber, SameBytesAsTheStreamOnRandomDoubles) {
   EXPECT_EQ(out.str(), "0.666666666667");
 }
 
+// Messages: three significant digits, whole numbers from 1e3 below 1e12 (map coordinates of
+// either sign), the exponent form outside.
+TEST(FormatNumber, ReadableNumbersForMessages) {
+  EXPECT_EQ(ReadableNumber(0.015), "0.015");
+  EXPECT_EQ(ReadableNumber(2.71828), "2.72");
+  EXPECT_EQ(ReadableNumber(999.4), "999");
+  EXPECT_EQ(ReadableNumber(6180.4), "6180");
+  EXPECT_EQ(ReadableNumber(-5431234.6), "-5431235");
+  EXPECT_EQ(ReadableNumber(999999999999.0), "999999999999");
+  EXPECT_EQ(ReadableNumber(2.75e13), "2.75e+13");
+  EXPECT_EQ(ReadableNumber(1e-7), "1e-07");
+}
+
 }  // namespace
 }  // namespace pqlayout
