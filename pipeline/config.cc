@@ -241,6 +241,11 @@ KeyTable::KeyTable(Config* c) {
          "the smoothness term acts on the interior edges with a face whose guidance weight is at most this (1: on every "
          "edge; 0.5: only where the guidance leaves φ's direction open: level sets ~1.3–1.6× faster, a different layout, "
          "as stiff over seven Great Court meshes, but the Great Court's curvature layout crosses at 29.4°; seams always smoothed)");
+  Number("levelset.tip_cone_radius", &c->levelset.tip_cone_radius, Range{0.0, 10.0},
+         "× h: a layout with branch points (tips of sign −1 seams) that still crosses below levelset.min_angle or "
+         "folds over after its rounds is solved again with the spacing term following the cone within this of each "
+         "branch point, h|∇u| = (d / (this × h))^½ at distance d instead of 1 (the cells there grow instead of "
+         "shearing), and the better end kept (0: no second solve)");
   Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000, "Ceres iterations of the φ solve and of the ψ solve");
   Integer("levelset.joint_iterations", &c->levelset.joint_iterations, 0, 100000,
           "Ceres iterations of the final solve of φ and ψ together, at most (0: none; past 100 it "

@@ -52,6 +52,7 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
     poles.push_back({{"centre", {c.centre.x(), c.centre.y(), c.centre.z()}}, {"cap_radius", c.radius}});
   (*metrics)["poles"] = poles;
   if (!solution.rejected_poles.is_null()) (*metrics)["poles_not_kept"] = solution.rejected_poles;
+  if (!solution.tip_cone.is_null()) (*metrics)["tip_cone"] = solution.tip_cone;
   if (state->config.output.fields) {
     PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
     PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));

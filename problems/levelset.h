@@ -102,6 +102,11 @@ struct LevelSetSolution {
   // alignment_without} if the layout without met the alignment target, else {crowns, tried:
   // true, alignment_with_poles, foldovers_with_poles}.
   nlohmann::json rejected_poles;
+  // The layout solved again with the cone's spacing round its branch points
+  // (levelset.tip_cone_radius), tried when it ended with a fold-over or a face below
+  // min_angle (null: not tried): {tried, kept, min_crossing_without, min_crossing_with,
+  // area_below_without, area_below_with, foldovers_without, foldovers_with}.
+  nlohmann::json tip_cone;
 };
 
 Status SolveLevelSets(const SurfaceModel& surface, const GuidanceField& guidance, const LevelsetOptions& options,

@@ -93,7 +93,14 @@ ceres::LossFunction* Weight(double w);
 bool Live(const std::vector<char>* live, std::initializer_list<int> ids);
 void AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss, std::initializer_list<std::pair<const Chart*, Scalar>> args);
 void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, const Chart& u, ceres::Problem* problem, const std::vector<char>* live = nullptr);
-void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u, ceres::Problem* problem, const std::vector<char>* live = nullptr);
+// The spacing term; target: ρ_f per face (ConeSpacingTargets), empty for 1 everywhere.
+void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u,
+                const std::vector<double>& target, ceres::Problem* problem, const std::vector<char>* live = nullptr);
+// What the spacing term asks of h|∇u| on each face (levelset.tip_cone_radius = R): round a branch
+// point u ~ Re z^{3/2}, so |∇u| ~ d^½ at distance d, and ρ_f = min(1, (d_f / (R h))^½) with d_f
+// from the face's centroid to the nearest tip; empty (1 everywhere) without tips or with R = 0.
+std::vector<double> ConeSpacingTargets(const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& tips,
+                                       double radius, double h);
 
 // levelset_metrics.cc
 LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, const GuidanceField& g, const std::vector<double>& phi, const std::vector<double>& psi, double min_angle_deg);

@@ -4,14 +4,12 @@
 // solves share; the order in which the residual blocks are added is the order of the paper's
 // terms and must not change (Ceres' ordering, and with it the last bits of every solve,
 // follow it).
-#include "problems/levelset_internal.h"
+#include "problems/levelset_problem.h"
 
 #include <glog/logging.h>
 
-#include <algorithm>
-#include <cmath>
+#include <functional>
 #include <memory>
-#include <tuple>
 #include <utility>
 
 #include "problems/residuals/alignment_residual.h"
@@ -22,128 +20,6 @@
 
 namespace pqlayout {
 namespace levelset_internal {
-
-// ---- Crossing-angle rounds ------------------------------------------------------------
-//
-// The transversality hinge is a penalty: at the joint optimum it balances against
-// alignment and spacing, and leaves a few percent of the faces crossing below min_angle
-// (on the Great Court near the guidance singularities and the rectangle's corners; with a
-// global weight ×10 the solve stalls and folds instead). So after the joint solve the
-// faces still crossing below min_angle + kCrossingSlack get their transversality weight
-// multiplied by kCrossingBoost, the hinge is raised by kCrossingMargin, and φ, ψ are
-// re-solved near those faces only: ψ within kPsiRings vertex rings, φ within kPhiRings
-// (φ moves as little as possible, to keep its alignment); the rest is held. Repeated until
-// no face crosses below min_angle or levelset.crossing_rounds is used up.
-constexpr double kCrossingSlack = 1.0;   // degrees above min_angle that still count as failing
-constexpr double kCrossingMargin = 1.5;  // degrees the hinge is raised by in the rounds
-constexpr double kCrossingBoost = 4.0;   // weight factor per round on a failing face
-constexpr int kPhiRings = 1, kPsiRings = 3;
-constexpr int kCrossingIterations = 30;  // Ceres iterations per round
-// The rounds also end after kCrossingPatience rounds in a row that did not reach the best
-// state (CrossingRounds): the boost has then grown ×64 on faces that did not respond. On the
-// corpus no round after three such ones ever became the best (wavy × strain, whose crossing
-// target cannot be met: none of its 10 rounds did; they were ~5 s of its run).
-constexpr int kCrossingPatience = 3;
-// The floor rounds (FloorRounds): the live region's rings round the failing faces, where the
-// floor lies (a fraction of the way from the worst s_f down from sin θ_min, and at least
-// kFloorMinMargin below it). Measured on the Great Court ensembles (benchmarks/RESULTS.md):
-// margin 0.5 left the strain layout's worst crossing at 23.7–28.8° over five meshes, 0.2 at
-// 25.4–29.2° (the worst face is pushed harder when the floor is close under it).
-constexpr int kFloorRings = 3;
-constexpr double kFloorMargin = 0.2;
-constexpr double kFloorMinMargin = 0.02;
-constexpr double kNoFloor = -2.0;  // below any s_f: no barrier term
-constexpr double kTolerated = 5.0;  // degrees below min_angle the worst crossing may be (RoundsKey)
-
-namespace {
-
-// Marks every vertex within `rings` vertex rings of a marked one.
-void GrowRings(const SurfaceModel& s, int rings, std::vector<char>* live) {
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<char> next = *live;
-    for (int v = 0; v < s.num_vertices(); ++v)
-      if ((*live)[v])
-        for (const auto u : s.mesh().vv_range(VertexHandle(v))) next[u.idx()] = 1;
-    live->swap(next);
-  }
-}
-
-// Marks the failing faces (see above), multiplies their boost and returns how many faces
-// cross below min_angle (0: nothing to do). live_phi / live_psi: the vertices free to move.
-int RaiseCrossings(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<double>& phi,
-                   const std::vector<double>& psi, double min_angle, std::vector<double>* boost,
-                   std::vector<char>* live_phi, std::vector<char>* live_psi) {
-  int below = 0;
-  const double sin_failing = std::sin(min_angle + kCrossingSlack / kDegrees);
-  std::vector<char> live(s.num_vertices(), 0);
-  for (int f = 0; f < s.num_faces(); ++f) {
-    const Eigen::Vector3d a = Gradient(geo, s, f, phi), b = Gradient(geo, s, f, psi);
-    const double sine = s.face_normal(f).dot(a.cross(b)) / (a.norm() * b.norm());
-    if (!(sine >= std::sin(min_angle))) ++below;
-    if (sine >= sin_failing) continue;
-    (*boost)[f] *= kCrossingBoost;
-    for (const int v : s.face_vertices(f)) live[v] = 1;
-  }
-  static_assert(kPhiRings <= kPsiRings, "φ's live region lies inside ψ's");
-  GrowRings(s, kPhiRings, &live);
-  *live_phi = live;
-  GrowRings(s, kPsiRings - kPhiRings, &live);
-  *live_psi = live;
-  return below;
-}
-
-
-// What the solves on one mesh share: the charts of φ and ψ (seam transitions), the per-face
-// transversality boost and hinge of the crossing rounds, and the term builders.
-class LevelSetProblem {
- public:
-  LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<InteriorEdge>& edges,
-                  const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams,
-                  std::vector<SeamEdgeTerm> seam_terms, LevelSetSolution* solution);
-
-  // Copies of seam vertices back onto their transitions (no-op without seams).
-  void Project();
-  LevelSetMetrics Measure() const;
-  Status SolvePhi();
-  Status SolvePsi();
-  Status SolveJoint();
-  Status Rounds();
-
- private:
-  Status CrossingRounds(const std::string& name = "crossing_round_", double floor = kNoFloor);
-  Status FloorRounds();
-  Status SolveLocal(const std::string& name, const std::vector<char>& live_phi, const std::vector<char>& live_psi,
-                    double floor);
-  // s_f of the transversality term on every face (crossing_barrier_residual.h).
-  std::vector<double> SignedSines() const;
-  // Closes a live set over the seam copies, so that every face whose values can move is in
-  // it (and carries the barrier): a live copy frees its parameter, a live parameter moves
-  // every copy of it.
-  void CloseOverCopies(std::vector<char>* live) const;
-  void AddPhiTerms(ceres::Problem* problem, const std::vector<char>* live = nullptr) const;
-  void AddPsiTerms(ceres::Problem* problem, const std::vector<char>* live = nullptr) const;
-  void AddSeamSmoothness(ceres::Problem* problem, const Chart& u, const std::vector<double>& offsets,
-                         const std::vector<char>* live) const;
-  void HoldTips(ceres::Problem* problem) const;
-
-  const SurfaceModel& s_;
-  const LevelSetGeometry& geo_;
-  const std::vector<InteriorEdge> edges_;  // those the smoothness term acts on (SmoothedEdges)
-  const GuidanceField& g_;
-  const LevelsetOptions& options_;
-  const LevelsetWeights& w_;
-  const double h_, min_angle_;
-  LevelSetSeams* seams_;  // null without seams
-  const std::vector<SeamEdgeTerm> seam_terms_;
-  LevelSetSolution* solution_;
-  std::vector<double>& phi_;
-  std::vector<double>& psi_;
-  Chart phi_chart_, psi_chart_;
-  std::vector<int> fixed_tips_;  // branch points of sign −1 seams: u = a/2 on both sides
-  std::vector<double> boost_;    // per-face transversality weight factor (RaiseCrossings)
-  double hinge_angle_;
-  double barrier_floor_ = kNoFloor;  // CrossingBarrierResidual's floor t in FloorRounds
-};
 
 LevelSetProblem::LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& geo,
                                  const std::vector<InteriorEdge>& edges, const GuidanceField& g,
@@ -165,6 +41,9 @@ LevelSetProblem::LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& 
     phi_chart_.map[pair.plus] = {pair.minus, sign, seams_->phi_offset[pair.path]};
     psi_chart_.map[pair.plus] = {pair.minus, sign, seams_->psi_offset[pair.path]};
   }
+  std::vector<Eigen::Vector3d> tips;
+  for (const int v : fixed_tips_) tips.push_back(s.position(v));
+  spacing_target_ = ConeSpacingTargets(geo, tips, options.tip_cone_radius, h);
 }
 
 void LevelSetProblem::Project() {
@@ -210,7 +89,7 @@ void LevelSetProblem::AddPhiTerms(ceres::Problem* problem, const std::vector<cha
                 {{&phi_chart_, phi_chart_.At(ids[0])}, {&phi_chart_, phi_chart_.At(ids[1])},
                  {&phi_chart_, phi_chart_.At(ids[2])}});
   }
-  AddSpacing(s_, geo_, h_, w_.spacing, phi_chart_, problem, live);
+  AddSpacing(s_, geo_, h_, w_.spacing, phi_chart_, spacing_target_, problem, live);
   AddSmoothness(edges_, h_, w_.smoothness, phi_chart_, problem, live);
   if (seams_ != nullptr) AddSeamSmoothness(problem, phi_chart_, seams_->phi_offset, live);
 }
@@ -235,7 +114,7 @@ void LevelSetProblem::AddPsiTerms(ceres::Problem* problem, const std::vector<cha
       AddMapped(problem, CrossingBarrierResidual::Create(geo_.G[f], n, min_angle_, barrier_floor_, s_.face_area(f), h_),
                 Weight(w_.transversality), blocks);
   }
-  AddSpacing(s_, geo_, h_, w_.spacing, psi_chart_, problem, live);
+  AddSpacing(s_, geo_, h_, w_.spacing, psi_chart_, spacing_target_, problem, live);
   AddSmoothness(edges_, h_, w_.smoothness, psi_chart_, problem, live);
   if (seams_ != nullptr) AddSeamSmoothness(problem, psi_chart_, seams_->psi_offset, live);
 }
@@ -277,173 +156,64 @@ Status LevelSetProblem::SolveJoint() {
   return Status::Ok();
 }
 
-// 4a. Local re-solves for the crossing angle (see RaiseCrossings). The best state (fewest
-// fold-overs, then fewest faces below min_angle; the joint solve's counts too) is kept: where
-// no crossing can be raised (closed level lines of φ around an index +1 singularity, which
-// every ψ line must touch somewhere) the boosted weights grow ×4 per round and tear the
-// solution apart (the wavy corpus roof: 23 → 66 fold-overs), while elsewhere a round that
-// adds a fold-over is often undone by later ones (two_holes: ending the rounds at the first
-// such round left 1 fold-over, running them all leaves 0).
-// prefix: the solves' names in report.json; floor: with a CrossingBarrierResidual floor t
-// under every face of the live region (kNoFloor: none), as Rounds' last step uses it.
-Status LevelSetProblem::CrossingRounds(const std::string& prefix, double floor) {
-  LevelSetMetrics best = Measure();
-  std::vector<double> best_phi = phi_, best_psi = psi_;
-  for (int round = 0, since_best = 0; round < options_.crossing_rounds && since_best < kCrossingPatience; ++round) {
-    std::vector<char> live_phi, live_psi;
-    if (RaiseCrossings(s_, geo_, phi_, psi_, min_angle_, &boost_, &live_phi, &live_psi) == 0) break;
-    for (int v = 0; v < s_.num_vertices(); ++v) {  // a live plus copy frees its parameter
-      if (live_phi[v]) live_phi[phi_chart_.At(v).vertex] = 1;
-      if (live_psi[v]) live_psi[psi_chart_.At(v).vertex] = 1;
-    }
-    hinge_angle_ = min_angle_ + kCrossingMargin / kDegrees;
-    if (floor != kNoFloor) CloseOverCopies(&live_psi);
-    PQ_RETURN_IF_ERROR(SolveLocal(prefix + std::to_string(round + 1), live_phi, live_psi, floor));
-    const LevelSetMetrics now = Measure();
-    if (std::make_pair(now.foldovers, now.faces_below_min_angle) <=
-        std::make_pair(best.foldovers, best.faces_below_min_angle)) {
-      best = now;
-      best_phi = phi_;
-      best_psi = psi_;
-      since_best = 0;
-    } else {
-      ++since_best;
-    }
-  }
-  phi_ = best_phi;  // a round may pass through worse states (more faces below) on its way
-  psi_ = best_psi;
-  return Status::Ok();
-}
+namespace {
 
-// One local re-solve of the rounds: the terms touching live_psi (with a CrossingBarrierResidual
-// at `floor` on each face, unless kNoFloor), φ held outside live_phi and ψ outside live_psi,
-// kCrossingIterations Ceres iterations, the state projected onto the charts after.
-Status LevelSetProblem::SolveLocal(const std::string& name, const std::vector<char>& live_phi,
-                                   const std::vector<char>& live_psi, double floor) {
-  barrier_floor_ = floor;
-  ceres::Problem local;
-  AddPhiTerms(&local, &live_psi);
-  AddPsiTerms(&local, &live_psi);
-  barrier_floor_ = kNoFloor;
-  for (int v = 0; v < s_.num_vertices(); ++v) {
-    if (!live_phi[v] && local.HasParameterBlock(&phi_[v])) local.SetParameterBlockConstant(&phi_[v]);
-    if (!live_psi[v] && local.HasParameterBlock(&psi_[v])) local.SetParameterBlockConstant(&psi_[v]);
-  }
-  HoldTips(&local);
-  PQ_RETURN_IF_ERROR(levelset_internal::Solve(name, kCrossingIterations, &local, &solution_->solver[name]));
-  Project();
-  return Status::Ok();
-}
+// What SolveOnMesh keeps for its `finish` (on the heap: with `finish` it outlives the call).
+struct MeshSolveState {
+  LevelSetGeometry geo;
+  std::vector<InteriorEdge> edges;
+  LevelsetOptions plain, cone;     // without and with levelset.tip_cone_radius
+  std::vector<double> phi0, psi0;  // the initial guess
+  std::unique_ptr<LevelSetProblem> problem;
+};
+using WholeSolve = std::function<Status(const LevelsetOptions&)>;  // from the initial guess to the joint solve
 
-void LevelSetProblem::CloseOverCopies(std::vector<char>* live) const {
-  for (int v = 0; v < s_.num_vertices(); ++v)
-    if ((*live)[v]) (*live)[phi_chart_.At(v).vertex] = (*live)[psi_chart_.At(v).vertex] = 1;
-  for (int v = 0; v < s_.num_vertices(); ++v)
-    if ((*live)[phi_chart_.At(v).vertex] || (*live)[psi_chart_.At(v).vertex]) (*live)[v] = 1;
-}
-
-std::vector<double> LevelSetProblem::SignedSines() const {
-  std::vector<double> sines(s_.num_faces());
-  for (int f = 0; f < s_.num_faces(); ++f) {
-    const Eigen::Vector3d a = Gradient(geo_, s_, f, phi_), b = Gradient(geo_, s_, f, psi_);
-    sines[f] = s_.face_normal(f).dot(a.cross(b)) / std::max(a.norm() * b.norm(), 1.0 / (h_ * h_));
+// 5. The cone's retry (levelset.tip_cone_radius): a layout with branch points that ends, after
+// its rounds, with a fold-over or a face below min_angle is solved again from the initial
+// guess with the spacing term following the cone round each branch point (ConeSpacingTargets),
+// and the better end by RoundsKey is kept. Every face the rounds leave below min_angle on the
+// Great Court's meshes lies within ~1.5 h of a branch point, where level lines h apart can only
+// shear the cells; with the cone everywhere, 14 of 14 such runs crossed at ≥ 30°, but the
+// corpus' layouts were a different draw (2 runs fewer met every target, 1.7 % softer), so the
+// cone is the retry, not the default (benchmarks/RESULTS.md, "The cone's spacing round the
+// branch points"). Layouts that meet min_angle are untouched.
+Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSolution* solution) {
+  const LevelSetMetrics without = solution->metrics;
+  const double min_angle = state.plain.min_angle;
+  if (!(state.cone.tip_cone_radius > 0.0) || state.problem->NumTips() == 0 ||
+      (without.foldovers == 0 && without.faces_below_min_angle == 0))
+    return Status::Ok();
+  LOG(INFO) << "levelset: " << without.faces_below_min_angle << " faces cross below " << min_angle << "° (the worst at "
+            << without.min_crossing_angle_deg << "°, " << without.foldovers << " fold-overs); solving again with the "
+            << "cone's spacing within " << state.cone.tip_cone_radius << " h of its " << state.problem->NumTips()
+            << " branch points";
+  const std::vector<double> phi = solution->phi, psi = solution->psi;
+  const nlohmann::json solver = solution->solver;
+  const std::string rounds_kept = solution->crossing_rounds_kept;
+  std::unique_ptr<LevelSetProblem> plain = std::move(state.problem);
+  PQ_RETURN_IF_ERROR(solve(state.cone));
+  PQ_RETURN_IF_ERROR(state.problem->Rounds());
+  const LevelSetMetrics with = state.problem->Measure();
+  const bool kept = RoundsKey(with, min_angle) < RoundsKey(without, min_angle);
+  solution->tip_cone = {{"tried", true}, {"kept", kept}, {"radius_h", state.cone.tip_cone_radius},
+                        {"min_crossing_without", without.min_crossing_angle_deg},
+                        {"min_crossing_with", with.min_crossing_angle_deg},
+                        {"area_below_without", without.area_below_min_angle},
+                        {"area_below_with", with.area_below_min_angle},
+                        {"foldovers_without", without.foldovers}, {"foldovers_with", with.foldovers}};
+  LOG(INFO) << "levelset: with the cone " << with.min_crossing_angle_deg << "° (" << with.faces_below_min_angle
+            << " faces below, " << with.foldovers << " fold-overs), without " << without.min_crossing_angle_deg
+            << "°: " << (kept ? "the cone's layout kept" : "the first layout kept");
+  if (kept) {
+    solution->metrics = with;
+    return Status::Ok();
   }
-  return sines;
-}
-
-// 4b. Floor rounds, when the crossing rounds end with a fold-over or below min_angle: from the
-// joint solve's end again, local re-solves (faces below min_angle + kCrossingSlack and
-// kFloorRings rings round them) with a barrier (crossing_barrier_residual.h) whose floor lies
-// kFloorMargin of the way from the worst face's s_f down from sin θ_min: no face can fall
-// below it, so the worst crossing cannot be traded to the neighbours, as the boosted hinge
-// does (there the end state is a draw in the mesh: benchmarks/RESULTS.md). Each round starts
-// from the last one's end with the floor raised under its new worst face. The best state by
-// RoundsKey is kept: fold-overs, then the worst crossing up to min_angle − kTolerated (a
-// face a few degrees short of min_angle is a sheared panel, one at 10° a sliver: issue 17's
-// targets are ≥ 25° everywhere and ≥ 30° on 99 % of the area), then the area below min_angle.
-std::tuple<int, double, double> RoundsKey(const LevelSetMetrics& m, double min_angle_deg) {
-  return {m.foldovers, -std::min(m.min_crossing_angle_deg, min_angle_deg - kTolerated), m.area_below_min_angle};
-}
-
-Status LevelSetProblem::FloorRounds() {
-  const double sin_min = std::sin(min_angle_), sin_failing = std::sin(min_angle_ + kCrossingSlack / kDegrees);
-  std::fill(boost_.begin(), boost_.end(), 1.0);
-  hinge_angle_ = min_angle_ + kCrossingMargin / kDegrees;
-  LevelSetMetrics best = Measure();
-  std::vector<double> best_phi = phi_, best_psi = psi_;
-  // Once the best state's worst crossing is within kTolerated of min_angle, RoundsKey weighs
-  // only the area below min_angle, which a raised floor rarely lowers: one round that does
-  // not improve it ends the floor rounds (on the corpus' floored runs this saved 0–2 of 5–6
-  // rounds, the kept layouts byte-identical; benchmarks/RESULTS.md).
-  const auto patience = [&] {
-    return best.min_crossing_angle_deg >= options_.min_angle - kTolerated ? 1 : kCrossingPatience;
-  };
-  for (int round = 0, since_best = 0; round < options_.crossing_rounds && since_best < patience(); ++round) {
-    const std::vector<double> sines = SignedSines();
-    const double lowest = *std::min_element(sines.begin(), sines.end());
-    if (lowest >= sin_failing) break;
-    std::vector<char> live(s_.num_vertices(), 0);
-    for (int f = 0; f < s_.num_faces(); ++f)
-      if (sines[f] < sin_failing)
-        for (const int v : s_.face_vertices(f)) live[v] = 1;
-    GrowRings(s_, kFloorRings, &live);
-    CloseOverCopies(&live);
-    const double floor = lowest - std::max(kFloorMargin * (sin_min - lowest), kFloorMinMargin);
-    PQ_RETURN_IF_ERROR(SolveLocal("floor_round_" + std::to_string(round + 1), live, live, floor));
-    const LevelSetMetrics now = Measure();
-    if (RoundsKey(now, options_.min_angle) <= RoundsKey(best, options_.min_angle)) {
-      best = now, best_phi = phi_, best_psi = psi_, since_best = 0;
-    } else {
-      ++since_best;
-    }
-  }
-  phi_ = best_phi;
-  psi_ = best_psi;
-  return Status::Ok();
-}
-
-// 4. The crossing rounds (4a); if they end with a fold-over or a face below min_angle: from
-// the joint solve's end again, the floor rounds (4b), then the crossing
-// rounds over a fixed floor (the floor rounds' worst s_f − kFloorMinMargin, not below
-// sin(min_angle − kTolerated) if it was above): they lift the faces between the floor and
-// min_angle without letting the worst one go. The better end of the two ways by RoundsKey is
-// kept (report.json's crossing_rounds_kept: "none", "boost" or "floor"). Alone, the floor
-// rounds kept every crossing above ~25° on the Great Court's meshes but left hundreds of
-// faces between 25° and 30° (3–6 % of the area) where the crossing rounds often leave none;
-// the last step brings that to ~1 % (benchmarks/RESULTS.md, "The floor rounds"). Until
-// 2026-12-05 the floor rounds were tried only below min_angle − kTolerated; where the crossing
-// rounds end between that and min_angle (the Great Court with fewer φ iterations: 28.4°, with
-// no joint solve: 29.1°) the floor way often ends at or above min_angle (30.3°, 30.3°): the
-// better end is kept either way, so this costs time only where the crossing rounds fall short.
-Status LevelSetProblem::Rounds() {
-  solution_->crossing_rounds_kept = "none";
-  if (options_.crossing_rounds <= 0) return Status::Ok();
-  const LevelSetMetrics joint = Measure();
-  if (joint.faces_below_min_angle == 0 && joint.foldovers == 0) return Status::Ok();
-  const std::vector<double> joint_phi = phi_, joint_psi = psi_;
-  PQ_RETURN_IF_ERROR(CrossingRounds());
-  solution_->crossing_rounds_kept = "boost";
-  const LevelSetMetrics boosted = Measure();
-  if (boosted.foldovers == 0 && boosted.faces_below_min_angle == 0) return Status::Ok();
-  const std::vector<double> boosted_phi = phi_, boosted_psi = psi_;
-  phi_ = joint_phi;
-  psi_ = joint_psi;
-  PQ_RETURN_IF_ERROR(FloorRounds());
-  if (Measure().faces_below_min_angle > 0) {  // the crossing rounds again, over a fixed floor
-    const std::vector<double> sines = SignedSines();
-    const double lowest = *std::min_element(sines.begin(), sines.end());
-    const double tolerated = std::sin((options_.min_angle - kTolerated) / kDegrees);
-    double floor = lowest - kFloorMinMargin;
-    if (lowest > tolerated) floor = std::max(floor, tolerated);
-    std::fill(boost_.begin(), boost_.end(), 1.0);
-    PQ_RETURN_IF_ERROR(CrossingRounds("polish_round_", floor));
-  }
-  if (RoundsKey(Measure(), options_.min_angle) < RoundsKey(boosted, options_.min_angle)) {
-    solution_->crossing_rounds_kept = "floor";
-  } else {
-    phi_ = boosted_phi;
-    psi_ = boosted_psi;
-  }
+  solution->phi = phi;
+  solution->psi = psi;
+  solution->solver = solver;
+  solution->crossing_rounds_kept = rounds_kept;
+  solution->metrics = without;
+  state.problem = std::move(plain);
   return Status::Ok();
 }
 
@@ -456,31 +226,36 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
                    LevelSetSeams* seams, LevelSetSolution* solution, Finish* finish) {
   if (seams != nullptr && seams->cut == nullptr) seams = nullptr;
   // On the heap: with `finish` the problem outlives this call.
-  struct State {
-    LevelSetGeometry geo;
-    std::vector<InteriorEdge> edges;
-    std::unique_ptr<LevelSetProblem> problem;
-  };
-  auto state = std::make_shared<State>();
+  auto state = std::make_shared<MeshSolveState>();
   state->geo = Precompute(s);
   state->edges = InteriorEdges(s, state->geo);
   PQ_RETURN_IF_ERROR(InitialGuess(s, state->geo, state->edges, g, options, h, seams, solution));
-  state->problem = std::make_unique<LevelSetProblem>(
-      s, state->geo, state->edges, g, options, h, seams,
-      seams != nullptr ? SeamEdgeTerms(s, state->geo, *seams->cut) : std::vector<SeamEdgeTerm>(), solution);
-  LevelSetProblem& problem = *state->problem;
-  problem.Project();
-  solution->initial = problem.Measure();
-  PQ_RETURN_IF_ERROR(problem.SolvePhi());
-  PQ_RETURN_IF_ERROR(problem.SolvePsi());
-  PQ_RETURN_IF_ERROR(problem.SolveJoint());
-  const auto rounds = [state, solution]() {
+  state->plain = state->cone = options;
+  state->plain.tip_cone_radius = 0.0;
+  state->phi0 = solution->phi;
+  state->psi0 = solution->psi;
+  // The whole solve, φ to the joint (the rounds come with `finish`), from the initial guess.
+  const WholeSolve solve = [state, &s, &g, h, seams, solution](const LevelsetOptions& o) {
+    solution->phi = state->phi0;
+    solution->psi = state->psi0;
+    state->problem = std::make_unique<LevelSetProblem>(
+        s, state->geo, state->edges, g, o, h, seams,
+        seams != nullptr ? SeamEdgeTerms(s, state->geo, *seams->cut) : std::vector<SeamEdgeTerm>(), solution);
+    LevelSetProblem& problem = *state->problem;
+    problem.Project();
+    solution->initial = problem.Measure();
+    PQ_RETURN_IF_ERROR(problem.SolvePhi());
+    PQ_RETURN_IF_ERROR(problem.SolvePsi());
+    return problem.SolveJoint();
+  };
+  PQ_RETURN_IF_ERROR(solve(state->plain));
+  const auto rounds = [state, solve, solution]() {
     PQ_RETURN_IF_ERROR(state->problem->Rounds());
     solution->metrics = state->problem->Measure();
-    return Status::Ok();
+    return TryTipCone(*state, solve, solution);
   };
   if (finish == nullptr) return rounds();
-  solution->metrics = problem.Measure();
+  solution->metrics = state->problem->Measure();
   *finish = rounds;
   return Status::Ok();
 }

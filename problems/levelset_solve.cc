@@ -320,6 +320,7 @@ void InterpolateFromWorking(const SurfaceModel& s, const std::shared_ptr<const S
   solution->metrics = coarse.metrics;
   solution->solver = coarse.solver;
   solution->crossing_rounds_kept = coarse.crossing_rounds_kept;
+  solution->tip_cone = coarse.tip_cone;
   solution->working_faces = working->num_faces();
   solution->seams = std::move(coarse.seams);  // with the counters of the seams not cut
   solution->working = working;

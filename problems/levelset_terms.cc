@@ -3,6 +3,10 @@
 
 #include <glog/logging.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "base/format_number.h"
 #include "problems/residuals/smoothness_residual.h"
 #include "problems/residuals/spacing_residual.h"
@@ -128,16 +132,31 @@ void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weig
   }
 }
 
-void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u, ceres::Problem* problem, const std::vector<char>* live) {
+// A face with target ρ asks for the local spacing h / ρ, weighted ρ², i.e. r_f = √(wA_f) (h|∇u_f| − ρ).
+void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u,
+                const std::vector<double>& target, ceres::Problem* problem, const std::vector<char>* live) {
   if (weight <= 0.0) return;
   for (int f = 0; f < s.num_faces(); ++f) {
     const auto ids = s.face_vertices(f);
     if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
-    AddMapped(problem, SpacingResidual::Create(geo.G[f], s.face_area(f), h), Weight(weight),
+    const double rho = target.empty() ? 1.0 : target[f];
+    AddMapped(problem, SpacingResidual::Create(geo.G[f], s.face_area(f), h / rho), Weight(weight * rho * rho),
               {{&u, u.At(ids[0])}, {&u, u.At(ids[1])}, {&u, u.At(ids[2])}});
   }
 }
 
+std::vector<double> ConeSpacingTargets(const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& tips,
+                                       double radius, double h) {
+  constexpr double kFloor = 0.05;  // never reached on a mesh (a centroid is ≳ 0.1 edge from a vertex): no 0 target
+  if (tips.empty() || !(radius > 0.0)) return {};
+  std::vector<double> target(geo.centroid.size());
+  for (size_t f = 0; f < target.size(); ++f) {
+    double d = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& t : tips) d = std::min(d, (geo.centroid[f] - t).norm());
+    target[f] = std::max(kFloor, std::min(1.0, std::pow(d / (radius * h), 0.5)));
+  }
+  return target;
+}
 
 }  // namespace levelset_internal
 }  // namespace pqlayout

@@ -107,6 +107,13 @@ struct LevelsetOptions {
   // sets ~1.3–1.6× faster, but the Great Court's curvature layout then crosses at 29.4°;
   // benchmarks/RESULTS.md, "Where the level sets' time goes").
   double smoothness_max_guidance = 1.0;
+  // A layout with branch points (tips of sign −1 seams) that still crosses below min_angle or
+  // folds over after its rounds is solved again with the spacing asked for within this × h of
+  // each branch point following the cone it makes, h|∇u| = (d / (tip_cone_radius · h))^½ at
+  // distance d instead of 1, and the better end kept (0: no second solve). Level lines cannot be
+  // h apart there without shearing the cells, and the shear is where the worst crossing was a
+  // draw (benchmarks/RESULTS.md, "The cone's spacing round the branch points").
+  double tip_cone_radius = 1.5;
   int max_iterations = 50;    // Ceres iterations of the φ solve and of the ψ solve
   int joint_iterations = 300; // Ceres iterations of the final joint solve, at most (0: none; stall stop past 100)
   int crossing_rounds = 10;   // local re-solves raising transversality where the crossing is below min_angle, at most (0: none); floor rounds too where they fail

@@ -2,6 +2,8 @@
 // translational surface z = f(x) + g(y), whose parameter lines are conjugate.
 #include <gtest/gtest.h>
 
+#include <ceres/ceres.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -50,6 +52,52 @@ TEST(LevelSets, FlatSquareWithConstantGuidanceGivesStraightEvenLines) {
   // φ = ±y / h + c: one level line every h.
   const Eigen::Vector3d grad = FaceGradient(s, 0, solution.phi);
   EXPECT_NEAR(grad.norm() * 1.5, 1.0, 1e-3);
+}
+
+// levelset.tip_cone_radius: round a branch point the spacing term asks for the cone's
+// h|∇u| = ρ_f = min(1, (d_f / (R h))^½), and a face's term is w A (h|∇u| − ρ)² / 2. On a plane with
+// a tip at the origin: ρ = 1 from R h on, ½ at a quarter of it, ordered by distance; no tips
+// or R = 0: no targets (1 everywhere). Then the cost of φ = x / h (h|∇φ| = 1) per face.
+TEST(LevelSets, SpacingFollowsTheConeRoundABranchPoint) {
+  const SurfaceModel s(Plane(12.0, 0.5));
+  const levelset_internal::LevelSetGeometry geo = levelset_internal::Precompute(s);
+  const double h = 1.5, radius = 1.5;
+  EXPECT_EQ(LevelsetOptions().tip_cone_radius, 1.5);
+  EXPECT_TRUE(levelset_internal::ConeSpacingTargets(geo, {}, radius, h).empty());
+  EXPECT_TRUE(levelset_internal::ConeSpacingTargets(geo, {Eigen::Vector3d::Zero()}, 0.0, h).empty());
+  const std::vector<double> rho = levelset_internal::ConeSpacingTargets(geo, {Eigen::Vector3d::Zero()}, radius, h);
+  ASSERT_EQ(static_cast<int>(rho.size()), s.num_faces());
+  int inside = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const double d = geo.centroid[f].norm();
+    if (d >= radius * h) {
+      EXPECT_EQ(rho[f], 1.0) << f;
+    } else {
+      ++inside;
+      EXPECT_NEAR(rho[f], std::sqrt(d / (radius * h)), 1e-15) << f;
+      EXPECT_GT(rho[f], 0.05) << f;  // the floor is never reached on a mesh
+    }
+  }
+  EXPECT_GT(inside, 20);  // π (2.25 m)² / 0.11 m² a face
+  // Two tips: the nearer one counts.
+  const std::vector<double> two =
+      levelset_internal::ConeSpacingTargets(geo, {Eigen::Vector3d(-4, 0, 0), Eigen::Vector3d(4, 0, 0)}, radius, h);
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const double d = std::min((geo.centroid[f] - Eigen::Vector3d(-4, 0, 0)).norm(), (geo.centroid[f] - Eigen::Vector3d(4, 0, 0)).norm());
+    EXPECT_NEAR(two[f], std::min(1.0, std::sqrt(d / (radius * h))), 1e-15);
+  }
+  // The term's cost with φ = x / h: ½ w A (1 − ρ)² per face, 0 where ρ = 1.
+  std::vector<double> phi(s.num_vertices());
+  for (int v = 0; v < s.num_vertices(); ++v) phi[v] = s.position(v).x() / h;
+  const levelset_internal::Chart chart{&phi, {}};
+  const double w = 5.0;
+  ceres::Problem problem;
+  levelset_internal::AddSpacing(s, geo, h, w, chart, rho, &problem);
+  double cost = 0.0, expected = 0.0;
+  ASSERT_TRUE(problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr));
+  for (int f = 0; f < s.num_faces(); ++f) expected += 0.5 * w * s.face_area(f) * (1.0 - rho[f]) * (1.0 - rho[f]);
+  EXPECT_GT(expected, 0.01);
+  EXPECT_NEAR(cost, expected, 1e-9 * expected);
 }
 
 // levelset.smoothness_max_guidance: the smoothness term acts on the edges with a face of
