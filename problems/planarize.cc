@@ -127,33 +127,6 @@ constexpr int kIterationsPerRound = 10;
 // reference before the later iterations pull them back (0.32 m on the lifted 3 m grid).
 constexpr double kEarlyDelta = 0.5, kEarlyCloseness = 0.01;
 
-// Ends a Ceres solve as soon as the current iterate meets the schedule's goal (above).
-class GoalReached final : public ceres::IterationCallback {
- public:
-  GoalReached(const std::vector<std::vector<int>>& faces, const std::vector<double>& position,
-              const ClosestPointQuery& query, double max_delta, double max_distance)
-      : faces_(faces), position_(position), query_(query), max_delta_(max_delta), max_distance_(max_distance) {}
-
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    std::vector<Eigen::Vector3d> polygon;
-    for (const auto& face : faces_) {
-      polygon.clear();
-      for (const int v : face) polygon.push_back(Point(v));
-      if (PlanarityDelta(polygon) > max_delta_) return ceres::SOLVER_CONTINUE;
-    }
-    for (size_t v = 0; v < position_.size() / 3; ++v)
-      if (query_.OnSurface(Point(v)).distance > max_distance_) return ceres::SOLVER_CONTINUE;
-    return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-  }
-
- private:
-  Eigen::Vector3d Point(size_t v) const { return {position_[3 * v], position_[3 * v + 1], position_[3 * v + 2]}; }
-  const std::vector<std::vector<int>>& faces_;
-  const std::vector<double>& position_;  // Ceres writes every iterate here (update_state_every_iteration)
-  const ClosestPointQuery& query_;
-  const double max_delta_, max_distance_;
-};
-
 void Measure(const PolyMesh& mesh, const std::vector<QuadMeshVertex>& origin, const ClosestPointQuery& query,
              PlanarizeReport* report) {
   const std::vector<double> delta = FacePlanarity(mesh);
@@ -247,6 +220,47 @@ PlanarizeData PrepareData(const ExtractedMesh& extracted, const ClosestPointQuer
   return d;
 }
 
+// Every triangle (PlanarizeData::triangles) still the way round it was at the shape reference:
+// its signed area round n₀ positive. A panel that a pass folded is cut into triangles that may
+// start inside out (stage_planarize.cc); planarity cannot see them, so the rounds go on, and a
+// round does not stop early, while one is (TriangleOrientationResidual opens it).
+bool TrianglesOpen(const std::vector<PlanarizeData::Triangle>& triangles, const std::vector<double>& position) {
+  const auto point = [&](int v) { return Eigen::Vector3d(position[3 * v], position[3 * v + 1], position[3 * v + 2]); };
+  for (const auto& t : triangles)
+    if (!(t.normal.dot((point(t.v[1]) - point(t.v[0])).cross(point(t.v[2]) - point(t.v[0]))) > 0.0)) return false;
+  return true;
+}
+
+// Ends a Ceres solve as soon as the current iterate meets the schedule's goal (above): every
+// face within max_delta, every vertex within max_distance of the reference and, with the
+// orientation term on, every triangle open.
+class GoalReached final : public ceres::IterationCallback {
+ public:
+  GoalReached(const PlanarizeData& d, const ClosestPointQuery& query, double max_delta, double max_distance,
+              bool check_triangles)
+      : d_(d), query_(query), max_delta_(max_delta), max_distance_(max_distance), check_triangles_(check_triangles) {}
+
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    std::vector<Eigen::Vector3d> polygon;
+    for (const auto& face : d_.faces) {
+      polygon.clear();
+      for (const int v : face) polygon.push_back(Point(v));
+      if (PlanarityDelta(polygon) > max_delta_) return ceres::SOLVER_CONTINUE;
+    }
+    for (size_t v = 0; v < d_.position.size() / 3; ++v)
+      if (query_.OnSurface(Point(v)).distance > max_distance_) return ceres::SOLVER_CONTINUE;
+    if (check_triangles_ && !TrianglesOpen(d_.triangles, d_.position)) return ceres::SOLVER_CONTINUE;
+    return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+  }
+
+ private:
+  Eigen::Vector3d Point(size_t v) const { return {d_.position[3 * v], d_.position[3 * v + 1], d_.position[3 * v + 2]}; }
+  const PlanarizeData& d_;  // Ceres writes every iterate to d_.position (update_state_every_iteration)
+  const ClosestPointQuery& query_;
+  const double max_delta_, max_distance_;
+  const bool check_triangles_;
+};
+
 // The current weights of the schedule: planarity, closeness and boundary are raised round by
 // round; anchor and fairness stay at their config values.
 struct RoundWeights {
@@ -315,7 +329,7 @@ void SolveRound(const ExtractedMesh& extracted, const ClosestPointQuery& query, 
     solver_options.linear_solver_type = ceres::CGNR;
     solver_options.preconditioner_type = ceres::JACOBI;
   }
-  GoalReached goal(d->faces, position, query, kEarlyDelta * options.target_delta, kEarlyCloseness * h);
+  GoalReached goal(*d, query, kEarlyDelta * options.target_delta, kEarlyCloseness * h, w.orientation > 0.0);
   solver_options.callbacks.push_back(&goal);
   solver_options.update_state_every_iteration = true;
   ceres::Solve(solver_options, &problem, summary);
@@ -343,7 +357,10 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
   SetPoints(data.position, &mesh);
   Measure(mesh, extracted->origin, query, report);
   bool on_surface = true;
-  for (report->rounds = 0; report->rounds < options.max_rounds && report->planarity_max > options.target_delta;) {
+  const auto unfinished = [&] {
+    return report->planarity_max > options.target_delta || (w.orientation > 0.0 && !TrianglesOpen(data.triangles, data.position));
+  };
+  for (report->rounds = 0; report->rounds < options.max_rounds && unfinished();) {
     ++report->rounds;
     ceres::Solver::Summary summary;
     const double previous = report->planarity_max;

@@ -437,6 +437,32 @@ TEST(PanelRepair, AWarpedQuadIsCutAlongItsBetterDiagonal) {
   EXPECT_EQ(diagonal(grid), (std::set<int>{1, 5}));
 }
 
+// A panel that planarisation folded is cut into a fan of triangles (SplitFoldedPanels), and
+// the next pass must open them even when every quad is planar already: planarity cannot see a
+// triangle inside out. A flat 3 × 3 grid with its interior vertex (1, 1) pushed to (2.3, 2.3),
+// past the vertex (2, 2): the panels it folded, cut, leave triangles inside out, and δ is 0
+// everywhere. Before the rounds also waited for the triangles, the pass did nothing and they
+// stayed folded (2 on the Great Court × strain with the seams' offsets rounded together).
+TEST(Planarize, TrianglesCutFromAFoldedPanelAreOpenedWhenEveryQuadIsPlanar) {
+  auto flat = [](double, double) { return 0.0; };
+  const SurfaceModel reference(testing::ToMesh(testing::GridSoup(3, flat)));
+  ExtractedMesh grid = QuadGrid(3, 3, 1.0, flat);
+  std::vector<Eigen::Vector3d> start;
+  for (const auto v : grid.mesh.vertices()) start.push_back(ToEigen(grid.mesh.point(v)));
+  grid.mesh.set_point(VertexHandle(5), {2.3, 2.3, 0.0});
+  ASSERT_GE(SplitFoldedPanels(start, &grid), 1);
+  PlanarizeReport before;
+  MeasurePanelShapes(grid.mesh, start, 1.0, 0.2, &before);
+  ASSERT_GE(before.folded_faces, 1);  // a triangle of the fan is inside out
+  PlanarizeReport report;
+  ASSERT_TRUE(PlanarizeMesh(reference, PlanarizeOptions(), 1.0, &grid, &report, &start).ok());
+  EXPECT_GE(report.rounds, 1);
+  EXPECT_LE(report.planarity_max, 1e-12);
+  PlanarizeReport after;
+  MeasurePanelShapes(grid.mesh, start, 1.0, 0.2, &after);
+  EXPECT_EQ(after.folded_faces, 0);
+}
+
 TEST(Planarize, NoisyPlanarGridReturnsToItsPlane) {
   auto flat = [](double, double) { return 0.0; };
   const SurfaceModel reference(testing::ToMesh(testing::GridSoup(6, flat)));
