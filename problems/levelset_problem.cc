@@ -162,6 +162,7 @@ namespace {
 struct MeshSolveState {
   LevelSetGeometry geo;
   std::vector<InteriorEdge> edges;
+  std::vector<SeamEdgeTerm> seam_terms;  // the same for both solves
   LevelsetOptions plain, cone;     // without and with levelset.tip_cone_radius
   std::vector<double> phi0, psi0;  // the initial guess
   std::unique_ptr<LevelSetProblem> problem;
@@ -230,6 +231,7 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   state->geo = Precompute(s);
   state->edges = InteriorEdges(s, state->geo);
   PQ_RETURN_IF_ERROR(InitialGuess(s, state->geo, state->edges, g, options, h, seams, solution));
+  if (seams != nullptr) state->seam_terms = SeamEdgeTerms(s, state->geo, *seams->cut);
   state->plain = state->cone = options;
   state->plain.tip_cone_radius = 0.0;
   state->phi0 = solution->phi;
@@ -239,8 +241,7 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     solution->phi = state->phi0;
     solution->psi = state->psi0;
     state->problem = std::make_unique<LevelSetProblem>(
-        s, state->geo, state->edges, g, o, h, seams,
-        seams != nullptr ? SeamEdgeTerms(s, state->geo, *seams->cut) : std::vector<SeamEdgeTerm>(), solution);
+        s, state->geo, state->edges, g, o, h, seams, state->seam_terms, solution);
     LevelSetProblem& problem = *state->problem;
     problem.Project();
     solution->initial = problem.Measure();

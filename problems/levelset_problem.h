@@ -14,7 +14,7 @@
 namespace pqlayout {
 namespace levelset_internal {
 
-constexpr double kNoFloor = -2.0;  // below any s_f: no barrier term
+inline constexpr double kNoFloor = -2.0;  // below any s_f: no barrier term
 
 // What the solves on one mesh share: the charts of φ and ψ (seam transitions), the per-face
 // transversality boost and hinge of the crossing rounds, and the term builders.
