@@ -55,8 +55,10 @@ constexpr double kTransitionStiffness = 1e3;
 // Without seams one vertex per connected component is held at 0; with seams too, unless a
 // seam of sign −1 already fixes the constant (offsets given). seams/family: the seams and
 // which offsets (0 φ, 1 ψ) apply; free_offsets: the a_p are unknowns too, returned in the
-// seams' offsets (not rounded).
-Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target, const std::vector<double>& omega, std::vector<double>* u, LevelSetSeams* seams, int family, bool free_offsets, double h) {
+// seams' offsets (not rounded), and offset_block (if given) gets the offsets' block of the
+// system's inverse, (A⁻¹)_aa: how the fit's energy rises when they are moved (RoundOffsets).
+Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target, const std::vector<double>& omega, std::vector<double>* u, LevelSetSeams* seams, int family, bool free_offsets, double h,
+                  Eigen::MatrixXd* offset_block) {
   std::vector<int> component;
   const int components = ConnectedComponents(s, &component);
   std::vector<char> anchored(components, 0);
@@ -115,8 +117,16 @@ Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std:
   u->assign(s.num_vertices(), 0.0);
   for (int v = 0; v < s.num_vertices(); ++v)
     if (unknown[v] >= 0) (*u)[v] = x[unknown[v]];
-  if (has_seams && free_offsets)
-    for (int p = 0; p < seams->cut->num_paths(); ++p) (*offsets)[p] = x[first_offset + p];
+  if (has_seams && free_offsets) {
+    const int k = seams->cut->num_paths();
+    for (int p = 0; p < k; ++p) (*offsets)[p] = x[first_offset + p];
+    if (offset_block != nullptr && k > 0) {
+      Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(n, k), solved;
+      for (int p = 0; p < k; ++p) columns(first_offset + p, p) = 1.0;
+      PQ_RETURN_IF_ERROR(solver.Solve(columns, &solved).WithContext("levelset initial guess"));
+      *offset_block = solved.bottomRows(k);
+    }
+  }
   return Status::Ok();
 }
 
@@ -125,20 +135,65 @@ Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std:
 // hexagon (the cone angle there is 3π), which extraction cuts into two quads, leaving two
 // vertices where five quads meet. With even offsets the lines would run through the branch
 // point, where P1 level lines of a cone point crowd and cross at small angles.
-void RoundOffsets(const LevelSetSeams& seams, std::vector<double>* offsets) {
-  for (size_t p = 0; p < offsets->size(); ++p) {
-    double& a = (*offsets)[p];
-    a = seams.sign[p] < 0 ? 2.0 * std::round((a - 1.0) / 2.0) + 1.0 : std::round(a);
+// Without `block` each offset goes to its nearest allowed value. With it (the offsets' block
+// C = (A⁻¹)_aa of the free fit), the seams are rounded together: the fit's energy with the
+// offsets held at a exceeds the free minimum a* by ½ (a − a*)ᵀ C⁻¹ (a − a*), and of the two
+// nearest allowed values per seam the combination of least excess is taken (all 2^k up to
+// kMaxJointSeams seams; beyond, single flips from the nearest while they help). Seams near a
+// common singularity pull together: rounding them one by one (free ψ 10.13, 9.63, 9.64, 10.13
+// → 11, 9, 9, 11 on the 112k Great Court) can shift the branch points against each other.
+constexpr int kMaxJointSeams = 12;
+
+void RoundOffsets(const LevelSetSeams& seams, std::vector<double>* offsets, const Eigen::MatrixXd* block) {
+  const int k = static_cast<int>(offsets->size());
+  Eigen::VectorXd free(k), low(k), rounded(k);
+  for (int p = 0; p < k; ++p) {
+    const double a = (*offsets)[p];
+    free[p] = a;
+    low[p] = seams.sign[p] < 0 ? 2.0 * std::floor((a - 1.0) / 2.0) + 1.0 : std::floor(a);
+    const double step = seams.sign[p] < 0 ? 2.0 : 1.0;
+    rounded[p] = a - low[p] <= 0.5 * step ? low[p] : low[p] + step;
   }
+  if (block != nullptr && k > 0 && block->rows() == k) {
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(*block);
+    auto excess = [&](const Eigen::VectorXd& a) { return (a - free).dot(ldlt.solve(a - free)); };
+    auto candidate = [&](unsigned mask) {
+      Eigen::VectorXd a = low;
+      for (int p = 0; p < k; ++p)
+        if (mask >> p & 1u) a[p] += seams.sign[p] < 0 ? 2.0 : 1.0;
+      return a;
+    };
+    double best = excess(rounded);
+    if (k <= kMaxJointSeams) {
+      for (unsigned mask = 0; mask < (1u << k); ++mask) {
+        const Eigen::VectorXd a = candidate(mask);
+        const double e = excess(a);
+        if (e < best - 1e-12 * std::abs(best)) best = e, rounded = a;
+      }
+    } else {
+      for (bool improved = true; improved;) {
+        improved = false;
+        for (int p = 0; p < k; ++p) {
+          Eigen::VectorXd a = rounded;
+          const double step = seams.sign[p] < 0 ? 2.0 : 1.0;
+          a[p] = a[p] == low[p] ? low[p] + step : low[p];
+          const double e = excess(a);
+          if (e < best - 1e-12 * std::abs(best)) best = e, rounded = a, improved = true;
+        }
+      }
+    }
+  }
+  for (int p = 0; p < k; ++p) (*offsets)[p] = rounded[p];
 }
 
-// With seams: PoissonFit with free offsets, the offsets rounded to whole levels, then again
-// with them fixed (QuadCover's rounding, in one step: the seams are few and far apart).
+// With seams: PoissonFit with free offsets, the offsets rounded to whole levels together,
+// then again with them fixed (QuadCover's rounding, in one step: the seams are few).
 Status SeamedPoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target,
                         const std::vector<double>& omega, double h, int family, LevelSetSeams* seams,
                         std::vector<double>* u) {
-  PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, omega, u, seams, family, true, h));
-  RoundOffsets(*seams, family == 0 ? &seams->phi_offset : &seams->psi_offset);
+  Eigen::MatrixXd block;
+  PQ_RETURN_IF_ERROR(PoissonFit(s, geo, target, omega, u, seams, family, true, h, &block));
+  RoundOffsets(*seams, family == 0 ? &seams->phi_offset : &seams->psi_offset, &block);
   return PoissonFit(s, geo, target, omega, u, seams, family, false, h);
 }
 

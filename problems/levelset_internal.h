@@ -73,8 +73,8 @@ std::vector<SeamEdgeTerm> SeamEdgeTerms(const SurfaceModel& s, const LevelSetGeo
 
 // levelset_initial.cc
 std::vector<Eigen::Vector3d> OrientedCrossField(const SurfaceModel& s, const GuidanceField& g);
-Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target, const std::vector<double>& omega, std::vector<double>* u, LevelSetSeams* seams = nullptr, int family = 0, bool free_offsets = false, double h = 1.0);
-void RoundOffsets(const LevelSetSeams& seams, std::vector<double>* offsets);
+Status PoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target, const std::vector<double>& omega, std::vector<double>* u, LevelSetSeams* seams = nullptr, int family = 0, bool free_offsets = false, double h = 1.0, Eigen::MatrixXd* offset_block = nullptr);
+void RoundOffsets(const LevelSetSeams& seams, std::vector<double>* offsets, const Eigen::MatrixXd* block = nullptr);
 Status SeamedPoissonFit(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<Eigen::Vector3d>& target, const std::vector<double>& omega, double h, int family, LevelSetSeams* seams, std::vector<double>* u);
 std::vector<int> SeamSigns(const SeamCut& cut, const std::vector<Eigen::Vector3d>& oriented);
 void ProjectTransitions(const LevelSetSeams& seams, const std::vector<double>& offsets, std::vector<double>* u);

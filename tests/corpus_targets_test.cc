@@ -109,8 +109,8 @@ const CorpusCase kCases[] = {
     // boundary vertex moved from the working mesh's polygon out onto the ring after the short-edge
     // collapses. Since they judge edges on the reference (ExtractQuadMesh's `reference`): met.
     {"great_court_112k", "strain", {}, "great_court.yaml", {"surface.edge_length=0.5"}},
-    {"great_court_112k", "curvature", {{"spacing_cv", 0.46}, {"interior_non_quads", 2}},
-     "great_court.yaml", {"surface.edge_length=0.5"}},
+    // The seams' offsets rounded together (2026-12-06): ψ's CV 0.369 → 0.075, all met.
+    {"great_court_112k", "curvature", {}, "great_court.yaml", {"surface.edge_length=0.5"}},
     // 44k (issue 19): the curvature layout's shortest edge was 0.198 h at the Reading Room's rim
     // until short edges were judged on the reference (2026-12-05).
     {"great_court_44k", "strain", {}, "great_court.yaml", {"surface.edge_length=0.8"}},
@@ -119,15 +119,15 @@ const CorpusCase kCases[] = {
 
 // Issue 19's targets for the Great Court at every size, stricter than the corpus': alignment
 // ≤ 6° where weight > 0.5, spacing CV ≤ 0.2, crossing ≥ 30°, no fold-over, quads ≥ 0.85 as
-// extracted, δ ≤ 1e-3 and closeness ≤ 0.02 h after planarisation. One known miss: the 112k
-// curvature layout's ψ spacing CV 0.369 (the branch-point seams' offsets rounded one by one;
-// benchmarks/RESULTS.md, "Diagnosed, not fixed").
+// extracted, δ ≤ 1e-3 and closeness ≤ 0.02 h after planarisation: met at 44k and 112k for both
+// sources since the seams' offsets are rounded together (2026-12-06; the 112k curvature layout's
+// ψ spacing CV was 0.369 with them rounded one by one: benchmarks/RESULTS.md, "Diagnosed, not fixed").
 void ExpectValidAtThisSize(const CorpusCase& c, const nlohmann::json& report, double h) {
   const nlohmann::json& st = report.at("stages");
   const nlohmann::json& levelset = st.at("levelset");
   const double cv = std::max(levelset.at("spacing_cv_phi").get<double>(), levelset.at("spacing_cv_psi").get<double>());
   EXPECT_LE(levelset.at("alignment_rms_deg_weight_above_half").get<double>(), 6.0);
-  EXPECT_LE(cv, c.roof == "great_court_112k" && c.source == "curvature" ? 0.38 : 0.2);
+  EXPECT_LE(cv, 0.2);
   EXPECT_GE(levelset.at("min_crossing_angle_deg").get<double>(), 30.0);
   EXPECT_EQ(levelset.at("foldovers").get<int>(), 0);
   EXPECT_GE(st.at("extract").at("quad_fraction").get<double>(), 0.85);
@@ -208,7 +208,9 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   EXPECT_EQ(!cone.is_null(), cone_tried);
   if (cone_tried) EXPECT_EQ(cone.at("kept").get<bool>(), coned);
   if (coned) EXPECT_GT(cone.at("min_crossing_with").get<double>(), cone.at("min_crossing_without").get<double>() + 1.0);
-  const bool floored = (c.source == "curvature" && c.roof == "hole_offcentre") ||
+  // With the seams' offsets rounded together (2026-12-06) the 112k Great Court's curvature
+  // layout keeps the floor rounds' end (30.3°).
+  const bool floored = (c.source == "curvature" && (c.roof == "hole_offcentre" || c.roof == "great_court_112k")) ||
                        (c.source == "strain" && (c.roof == "hypar" || c.roof == "saddle_elliptic" || c.roof == "hole_offcentre"));
   EXPECT_EQ(stages.at("levelset").at("crossing_rounds_kept") == "floor", floored);
   if (floored) EXPECT_TRUE(stages.at("levelset").at("ceres").contains("floor_round_1"));

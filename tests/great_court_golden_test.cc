@@ -124,7 +124,8 @@ TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
 // 2026-12-04, 2026-12-05). Measured: crossing 30.46°, quads 0.868. Since stiffen's slide no
 // longer uses up the tolerance (stiffen.slide 0.1 m instead of 0.01 m, 2026-12-05): 53,257 J
 // here, ≤ 65,866 J over the seven meshes; since the planes are measured from their faces
-// 52,991 J, ≤ 73,112 J.
+// 52,991 J, ≤ 73,112 J; since the seams' offsets are rounded together (2026-12-06) 55,003 J
+// here, ≤ 56,555 J over the seven (benchmarks/ensemble/stiffness_offsets_rounded_together.csv).
 TEST(GreatCourt, StrainLayoutWithCurvatureFallbackIsTwiceAsStiff) {
   const nlohmann::json s = GreatCourtStages("strain", {}, Stage::kStiffen);
   ExpectCommonTargetsExceptCrossing(s, 3.0);
@@ -135,7 +136,7 @@ TEST(GreatCourt, StrainLayoutWithCurvatureFallbackIsTwiceAsStiff) {
   EXPECT_LE(s["levelset"]["alignment_rms_deg_source_above_half"].get<double>(), 3.0);
   EXPECT_LE(s["levelset"]["alignment_rms_deg_weight_above_half"].get<double>(), 3.0);
   EXPECT_EQ(s["planarize"]["folded_faces"].get<int>(), 0);
-  EXPECT_LE(s["stiffen"]["compliance_after"].get<double>(), 70000.0);
+  EXPECT_LE(s["stiffen"]["compliance_after"].get<double>(), 60000.0);
   EXPECT_LE(s["stiffen"]["closeness_max"].get<double>(), 0.1);  // stiffen.tolerance, with a slide of 0.1 m along it
   EXPECT_LE(s["stiffen"]["planarity_max"].get<double>(), 1e-3);
 }
