@@ -32,6 +32,8 @@ class LevelSetProblem {
   Status SolveJoint();
   Status Rounds();
   int NumTips() const { return static_cast<int>(fixed_tips_.size()); }  // branch points held at a/2
+  // Prefixed to the names of the solves in the log and report.json's ceres (the cone's retry: "cone_").
+  void SetSolvePrefix(const std::string& prefix) { prefix_ = prefix; }
 
  private:
   Status CrossingRounds(const std::string& name = "crossing_round_", double floor = kNoFloor);
@@ -68,6 +70,7 @@ class LevelSetProblem {
   std::vector<double> boost_;    // per-face transversality weight factor (RaiseCrossings)
   double hinge_angle_;
   double barrier_floor_ = kNoFloor;  // CrossingBarrierResidual's floor t in FloorRounds
+  std::string prefix_;
 };
 
 // The rounds' order of two ends (levelset_rounds.cc): smaller is better.

@@ -134,7 +134,8 @@ Status LevelSetProblem::SolveLocal(const std::string& name, const std::vector<ch
     if (!live_psi[v] && local.HasParameterBlock(&psi_[v])) local.SetParameterBlockConstant(&psi_[v]);
   }
   HoldTips(&local);
-  PQ_RETURN_IF_ERROR(levelset_internal::Solve(name, kCrossingIterations, &local, &solution_->solver[name]));
+  PQ_RETURN_IF_ERROR(
+      levelset_internal::Solve(prefix_ + name, kCrossingIterations, &local, &solution_->solver[prefix_ + name]));
   Project();
   return Status::Ok();
 }
