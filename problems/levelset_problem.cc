@@ -170,7 +170,9 @@ struct MeshSolveState {
   std::vector<double> phi0, psi0;  // the initial guess
   std::unique_ptr<LevelSetProblem> problem;
 };
-using WholeSolve = std::function<Status(const LevelsetOptions&)>;  // from the initial guess to the joint solve
+// From the initial guess to the joint solve; prefix: the solves' names in the log and report
+// ("cone_" for the retry, so that it does not overwrite the first layout's entries).
+using WholeSolve = std::function<Status(const LevelsetOptions&, const std::string& prefix)>;
 
 // 5. The cone's retry (levelset.tip_cone_radius): a layout with branch points that ends, after
 // its rounds, with a fold-over or a face below min_angle is solved again from the initial
@@ -198,7 +200,7 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
   const std::vector<double> phi = solution->phi, psi = solution->psi;
   const std::string rounds_kept = solution->crossing_rounds_kept;
   std::unique_ptr<LevelSetProblem> plain = std::move(state.problem);
-  PQ_RETURN_IF_ERROR(solve(state.cone));
+  PQ_RETURN_IF_ERROR(solve(state.cone, "cone_"));
   PQ_RETURN_IF_ERROR(state.problem->Rounds());
   const LevelSetMetrics with = state.problem->Measure();
   const bool kept = RoundsKey(with, min_angle) < RoundsKey(without, min_angle);
@@ -242,20 +244,20 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   state->phi0 = solution->phi;
   state->psi0 = solution->psi;
   // The whole solve, φ to the joint (the rounds come with `finish`), from the initial guess.
-  const WholeSolve solve = [state, &s, &g, h, seams, solution](const LevelsetOptions& o) {
+  const WholeSolve solve = [state, &s, &g, h, seams, solution](const LevelsetOptions& o, const std::string& prefix) {
     solution->phi = state->phi0;
     solution->psi = state->psi0;
     state->problem = std::make_unique<LevelSetProblem>(
         s, state->geo, state->edges, g, o, h, seams, state->seam_terms, solution);
     LevelSetProblem& problem = *state->problem;
-    if (o.tip_cone_radius > 0.0) problem.SetSolvePrefix("cone_");  // the retry's solves in the log and report
+    problem.SetSolvePrefix(prefix);
     problem.Project();
-    solution->initial = problem.Measure();
+    if (prefix.empty()) solution->initial = problem.Measure();  // the same initial guess for the retry
     PQ_RETURN_IF_ERROR(problem.SolvePhi());
     PQ_RETURN_IF_ERROR(problem.SolvePsi());
     return problem.SolveJoint();
   };
-  PQ_RETURN_IF_ERROR(solve(state->plain));
+  PQ_RETURN_IF_ERROR(solve(state->plain, ""));
   const auto rounds = [state, solve, solution]() {
     PQ_RETURN_IF_ERROR(state->problem->Rounds());
     solution->metrics = state->problem->Measure();
