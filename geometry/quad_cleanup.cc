@@ -437,7 +437,11 @@ std::pair<int, int> SplitLargePolygons(double min_angle, Polygons* m, double min
         }
       }
     }
-    double best_score = min_angle;
+    // A boundary cell of seven or more sides takes its best cut down to kLastResortCutAngle:
+    // a quad with a 13° corner is a poor panel, a 10 m × 5 m 9-gon is no panel (the Great
+    // Court's paper layout had one whose best cut was 12.9°, 2026-12-06).
+    const bool large = touches_boundary && n >= 7;
+    double best_score = large ? std::min(min_angle, kLastResortCutAngle) : min_angle;
     const std::vector<std::vector<int>>* best = nullptr;
     for (const auto& pieces : options) {
       const double score = CutScore(*m, face, pieces, halfedges, touches_boundary ? &on_boundary : nullptr);

@@ -21,6 +21,8 @@ struct Polygons {
 };
 
 inline constexpr double kMinResplitAngle = 20.0 * M_PI / 180.0;  // both quads: every angle in [20°, 160°]
+// SplitLargePolygons' floor for a boundary cell of seven or more sides (no cut above min_angle).
+inline constexpr double kLastResortCutAngle = 10.0 * M_PI / 180.0;
 
 // One round of collapses of edges shorter than min_length, on disjoint neighbourhoods.
 int CollapseRound(double min_length, Polygons* m);

@@ -9,6 +9,7 @@
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -85,14 +86,23 @@ std::vector<Eigen::Vector3d> ConjugateTargets(const SurfaceModel& s, const Level
 Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const std::vector<InteriorEdge>& edges, const GuidanceField& g, const LevelsetOptions& options, double h, LevelSetSeams* seams, LevelSetSolution* solution);
 
 // levelset_terms.cc
+// A level-set solve's Ceres problem and which of its residual blocks are smoothness terms
+// (interior and seam edges): the only terms that couple a vertex to the opposite vertices of
+// its edges, and so most of the fill of the normal equations; Solve's preconditioner leaves
+// them out.
+struct TermProblem {
+  ceres::Problem problem;
+  std::unordered_set<ceres::ResidualBlockId> smoothness;
+};
 // One Ceres solve of at most max_iterations, logged under name; stop_on_stall: also end once
 // past iteration 100 the cost fell by less than 0.5 % over the last 24 (levelset_terms.cc, StallStop).
-Status Solve(const std::string& name, int max_iterations, ceres::Problem* problem, nlohmann::json* summary,
+Status Solve(const std::string& name, int max_iterations, TermProblem* terms, nlohmann::json* summary,
              bool stop_on_stall = false);
 ceres::LossFunction* Weight(double w);
 bool Live(const std::vector<char>* live, std::initializer_list<int> ids);
-void AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss, std::initializer_list<std::pair<const Chart*, Scalar>> args);
-void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, const Chart& u, ceres::Problem* problem, const std::vector<char>* live = nullptr);
+ceres::ResidualBlockId AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss,
+                                 std::initializer_list<std::pair<const Chart*, Scalar>> args);
+void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, const Chart& u, TermProblem* terms, const std::vector<char>* live = nullptr);
 // The spacing term; target: ρ_f per face (ConeSpacingTargets), empty for 1 everywhere.
 void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u,
                 const std::vector<double>& target, ceres::Problem* problem, const std::vector<char>* live = nullptr);

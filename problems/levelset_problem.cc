@@ -65,7 +65,7 @@ void LevelSetProblem::HoldTips(ceres::Problem* problem) const {
 // Smoothness across the seams: f on the minus side, g on the plus side; with the plus face's
 // third vertex l read as s·(u_l − a) (its plus-chart value mapped back), the ordinary
 // smoothness term measures ∇u_f − s·∇u_g, the jump in one chart.
-void LevelSetProblem::AddSeamSmoothness(ceres::Problem* problem, const Chart& u, const std::vector<double>& offsets,
+void LevelSetProblem::AddSeamSmoothness(TermProblem* terms, const Chart& u, const std::vector<double>& offsets,
                                         const std::vector<char>* live) const {
   if (w_.smoothness <= 0.0) return;
   for (const auto& t : seam_terms_) {
@@ -73,13 +73,15 @@ void LevelSetProblem::AddSeamSmoothness(ceres::Problem* problem, const Chart& u,
     const double sign = seams_->sign[t.path];
     Scalar l = u.At(t.l);
     l = {l.vertex, sign * l.scale, sign * (l.offset - offsets[t.path])};
-    AddMapped(problem, SmoothnessResidual::Create(t.Gf, t.Gg, t.area, t.distance, h_), Weight(w_.smoothness),
-              {{&u, u.At(t.i_minus)}, {&u, u.At(t.j_minus)}, {&u, u.At(t.k)}, {&u, l}});
+    terms->smoothness.insert(AddMapped(&terms->problem, SmoothnessResidual::Create(t.Gf, t.Gg, t.area, t.distance, h_),
+                                       Weight(w_.smoothness),
+                                       {{&u, u.At(t.i_minus)}, {&u, u.At(t.j_minus)}, {&u, u.At(t.k)}, {&u, l}}));
   }
 }
 
 // φ's terms: alignment + spacing + smoothness.
-void LevelSetProblem::AddPhiTerms(ceres::Problem* problem, const std::vector<char>* live) const {
+void LevelSetProblem::AddPhiTerms(TermProblem* terms, const std::vector<char>* live) const {
+  ceres::Problem* problem = &terms->problem;
   for (int f = 0; f < s_.num_faces(); ++f) {
     const auto ids = s_.face_vertices(f);
     if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
@@ -90,12 +92,13 @@ void LevelSetProblem::AddPhiTerms(ceres::Problem* problem, const std::vector<cha
                  {&phi_chart_, phi_chart_.At(ids[2])}});
   }
   AddSpacing(s_, geo_, h_, w_.spacing, phi_chart_, spacing_target_, problem, live);
-  AddSmoothness(edges_, h_, w_.smoothness, phi_chart_, problem, live);
-  if (seams_ != nullptr) AddSeamSmoothness(problem, phi_chart_, seams_->phi_offset, live);
+  AddSmoothness(edges_, h_, w_.smoothness, phi_chart_, terms, live);
+  if (seams_ != nullptr) AddSeamSmoothness(terms, phi_chart_, seams_->phi_offset, live);
 }
 
 // ψ's terms: conjugacy + transversality (both also involve φ) + spacing + smoothness.
-void LevelSetProblem::AddPsiTerms(ceres::Problem* problem, const std::vector<char>* live) const {
+void LevelSetProblem::AddPsiTerms(TermProblem* terms, const std::vector<char>* live) const {
+  ceres::Problem* problem = &terms->problem;
   for (int f = 0; f < s_.num_faces(); ++f) {
     const auto ids = s_.face_vertices(f);
     if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
@@ -115,17 +118,17 @@ void LevelSetProblem::AddPsiTerms(ceres::Problem* problem, const std::vector<cha
                 Weight(w_.transversality), blocks);
   }
   AddSpacing(s_, geo_, h_, w_.spacing, psi_chart_, spacing_target_, problem, live);
-  AddSmoothness(edges_, h_, w_.smoothness, psi_chart_, problem, live);
-  if (seams_ != nullptr) AddSeamSmoothness(problem, psi_chart_, seams_->psi_offset, live);
+  AddSmoothness(edges_, h_, w_.smoothness, psi_chart_, terms, live);
+  if (seams_ != nullptr) AddSeamSmoothness(terms, psi_chart_, seams_->psi_offset, live);
 }
 
 // 1. φ alone.
 Status LevelSetProblem::SolvePhi() {
-  ceres::Problem problem;
-  AddPhiTerms(&problem);
-  HoldTips(&problem);
-  if (problem.NumResidualBlocks() > 0)
-    PQ_RETURN_IF_ERROR(levelset_internal::Solve(prefix_ + "phi", options_.max_iterations, &problem,
+  TermProblem terms;
+  AddPhiTerms(&terms);
+  HoldTips(&terms.problem);
+  if (terms.problem.NumResidualBlocks() > 0)
+    PQ_RETURN_IF_ERROR(levelset_internal::Solve(prefix_ + "phi", options_.max_iterations, &terms,
                                                 &solution_->solver[prefix_ + "phi"]));
   Project();
   return Status::Ok();
@@ -133,13 +136,13 @@ Status LevelSetProblem::SolvePhi() {
 
 // 2. ψ with φ held.
 Status LevelSetProblem::SolvePsi() {
-  ceres::Problem problem;
-  AddPsiTerms(&problem);
+  TermProblem terms;
+  AddPsiTerms(&terms);
   for (double& value : phi_)
-    if (problem.HasParameterBlock(&value)) problem.SetParameterBlockConstant(&value);
-  HoldTips(&problem);
-  if (problem.NumResidualBlocks() > 0)
-    PQ_RETURN_IF_ERROR(levelset_internal::Solve(prefix_ + "psi", options_.max_iterations, &problem,
+    if (terms.problem.HasParameterBlock(&value)) terms.problem.SetParameterBlockConstant(&value);
+  HoldTips(&terms.problem);
+  if (terms.problem.NumResidualBlocks() > 0)
+    PQ_RETURN_IF_ERROR(levelset_internal::Solve(prefix_ + "psi", options_.max_iterations, &terms,
                                                 &solution_->solver[prefix_ + "psi"]));
   Project();
   return Status::Ok();
@@ -148,12 +151,12 @@ Status LevelSetProblem::SolvePsi() {
 // 3. Both together, so that φ can give way where ψ cannot cross it steeply enough.
 Status LevelSetProblem::SolveJoint() {
   if (options_.joint_iterations <= 0) return Status::Ok();
-  ceres::Problem problem;
-  AddPhiTerms(&problem);
-  AddPsiTerms(&problem);
-  HoldTips(&problem);
+  TermProblem terms;
+  AddPhiTerms(&terms);
+  AddPsiTerms(&terms);
+  HoldTips(&terms.problem);
   PQ_RETURN_IF_ERROR(
-      levelset_internal::Solve(prefix_ + "joint", options_.joint_iterations, &problem,
+      levelset_internal::Solve(prefix_ + "joint", options_.joint_iterations, &terms,
                                &solution_->solver[prefix_ + "joint"], true));
   Project();
   return Status::Ok();

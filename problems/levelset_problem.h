@@ -46,9 +46,9 @@ class LevelSetProblem {
   // it (and carries the barrier): a live copy frees its parameter, a live parameter moves
   // every copy of it.
   void CloseOverCopies(std::vector<char>* live) const;
-  void AddPhiTerms(ceres::Problem* problem, const std::vector<char>* live = nullptr) const;
-  void AddPsiTerms(ceres::Problem* problem, const std::vector<char>* live = nullptr) const;
-  void AddSeamSmoothness(ceres::Problem* problem, const Chart& u, const std::vector<double>& offsets,
+  void AddPhiTerms(TermProblem* terms, const std::vector<char>* live = nullptr) const;
+  void AddPsiTerms(TermProblem* terms, const std::vector<char>* live = nullptr) const;
+  void AddSeamSmoothness(TermProblem* terms, const Chart& u, const std::vector<double>& offsets,
                          const std::vector<char>* live) const;
   void HoldTips(ceres::Problem* problem) const;
 

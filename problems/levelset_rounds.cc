@@ -125,17 +125,18 @@ Status LevelSetProblem::CrossingRounds(const std::string& prefix, double floor) 
 Status LevelSetProblem::SolveLocal(const std::string& name, const std::vector<char>& live_phi,
                                    const std::vector<char>& live_psi, double floor) {
   barrier_floor_ = floor;
-  ceres::Problem local;
-  AddPhiTerms(&local, &live_psi);
-  AddPsiTerms(&local, &live_psi);
+  TermProblem terms;
+  AddPhiTerms(&terms, &live_psi);
+  AddPsiTerms(&terms, &live_psi);
   barrier_floor_ = kNoFloor;
+  ceres::Problem& local = terms.problem;
   for (int v = 0; v < s_.num_vertices(); ++v) {
     if (!live_phi[v] && local.HasParameterBlock(&phi_[v])) local.SetParameterBlockConstant(&phi_[v]);
     if (!live_psi[v] && local.HasParameterBlock(&psi_[v])) local.SetParameterBlockConstant(&psi_[v]);
   }
   HoldTips(&local);
   PQ_RETURN_IF_ERROR(
-      levelset_internal::Solve(prefix_ + name, kCrossingIterations, &local, &solution_->solver[prefix_ + name]));
+      levelset_internal::Solve(prefix_ + name, kCrossingIterations, &terms, &solution_->solver[prefix_ + name]));
   Project();
   return Status::Ok();
 }

@@ -68,12 +68,39 @@ nlohmann::json SummaryJson(const ceres::Solver::Summary& s) {
           {"termination", ceres::TerminationTypeToString(s.termination_type)},
           {"seconds", s.total_time_in_seconds},
           {"residual_blocks", s.num_residual_blocks},
+          {"linear_solver", ceres::LinearSolverTypeToString(s.linear_solver_type_used)},
           {"message", s.message}};
 }
 
-Status Solve(const std::string& name, int max_iterations, ceres::Problem* problem, nlohmann::json* summary,
+// The linear solver: conjugate gradients on the normal equations, preconditioned by the
+// Cholesky factor (Eigen's, as every solve's: solver/ceres_options.h) of the normal equations
+// without the smoothness terms (Ceres' SUBSET preconditioner). The smoothness term is the only
+// one reading an edge's two opposite vertices; with it the factor of the Great Court's joint
+// solve (12.9k unknowns) took 105 ms an iteration, without it 30 ms, and its weight (0.01
+// against 5–100) leaves conjugate gradients little to do. Each step's iterations go on until
+// the i-th improves the quadratic model by less than kForcing / i of it (Ceres' eta): at
+// Ceres' default 0.1 the inexact steps made a different optimiser
+// (the wavy roof × curvature lost its poles and aligned to 37.8° instead of 2.8°); at 1e-3
+// the steps are the factor's to a few digits (benchmarks/RESULTS.md, "The level sets' linear
+// solver: the smoothness left to conjugate gradients"). Without any smoothness block the
+// factor is exact and the plain sparse Cholesky is used.
+constexpr double kForcing = 1e-3;
+
+Status Solve(const std::string& name, int max_iterations, TermProblem* terms, nlohmann::json* summary,
              bool stop_on_stall) {
+  ceres::Problem* problem = &terms->problem;
   ceres::Solver::Options options = SparseCholeskyOptions(max_iterations);
+  if (!terms->smoothness.empty()) {
+    std::vector<ceres::ResidualBlockId> blocks;
+    problem->GetResidualBlocks(&blocks);
+    for (const ceres::ResidualBlockId id : blocks)
+      if (terms->smoothness.count(id) == 0) options.residual_blocks_for_subset_preconditioner.insert(id);
+    if (!options.residual_blocks_for_subset_preconditioner.empty()) {
+      options.linear_solver_type = ceres::CGNR;
+      options.preconditioner_type = ceres::SUBSET;
+      options.eta = kForcing;
+    }
+  }
   ProgressLog progress(name);
   StallStop stall;
   options.callbacks.push_back(&progress);
@@ -108,8 +135,8 @@ bool Live(const std::vector<char>* live, std::initializer_list<int> ids) {
 
 
 // Adds `cost` over the given scalars (chart, vertex), through their maps.
-void AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss,
-               std::initializer_list<std::pair<const Chart*, Scalar>> args) {
+ceres::ResidualBlockId AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss,
+                                 std::initializer_list<std::pair<const Chart*, Scalar>> args) {
   std::vector<double*> blocks;
   std::vector<double> scale, offset;
   bool identity = true;
@@ -120,15 +147,15 @@ void AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFu
     identity = identity && x.scale == 1.0 && x.offset == 0.0;
   }
   if (!identity) cost = new AffineMappedCost(cost, std::move(scale), std::move(offset));
-  problem->AddResidualBlock(cost, loss, blocks);
+  return problem->AddResidualBlock(cost, loss, blocks);
 }
 
-void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, const Chart& u, ceres::Problem* problem, const std::vector<char>* live) {
+void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, const Chart& u, TermProblem* terms, const std::vector<char>* live) {
   if (weight <= 0.0) return;
   for (const auto& e : edges) {
     if (!Live(live, {e.i, e.j, e.k, e.l})) continue;
-    AddMapped(problem, SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h), Weight(weight),
-              {{&u, u.At(e.i)}, {&u, u.At(e.j)}, {&u, u.At(e.k)}, {&u, u.At(e.l)}});
+    terms->smoothness.insert(AddMapped(&terms->problem, SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h),
+                                       Weight(weight), {{&u, u.At(e.i)}, {&u, u.At(e.j)}, {&u, u.At(e.k)}, {&u, u.At(e.l)}}));
   }
 }
 

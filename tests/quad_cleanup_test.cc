@@ -104,6 +104,40 @@ static extraction_internal::Polygons StarHexagonInARing(double far0, double far)
   return m;
 }
 
+// The Great Court paper layout's boundary 9-gon (2026-12-06, corners rounded to cm, flattened
+// onto z = 0): two corners on the Reading Room's ring (the one boundary side, 0.83 m), the
+// others inside, a ring of quads (corners ×2 about the centroid) on every other side. Its best
+// cut into quads and a triangle has a corner below 20°, so it used to stay a 10 m × 5 m 9-gon;
+// a boundary cell of seven or more sides now takes its best cut down to 10°.
+TEST(QuadCleanup, ABoundaryNineGonWithNoCutAbove20DegreesTakesItsBestCut) {
+  const std::vector<Eigen::Vector2d> corners{{17.73, 16.03}, {21.28, 15.02}, {25.57, 14.93}, {24.13, 17.85}, {19.39, 18.10},
+                                             {16.74, 20.88}, {15.00, 18.45}, {15.23, 16.21}, {15.82, 15.62}};
+  extraction_internal::Polygons m;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& c : corners) centroid += Eigen::Vector3d(c.x(), c.y(), 0.0) / 9.0;
+  for (const auto& c : corners) m.position.emplace_back(c.x(), c.y(), 0.0);
+  for (int k = 0; k < 9; ++k) m.position.push_back(centroid + 2.0 * (m.position[k] - centroid));
+  m.origin.resize(18);
+  m.faces.push_back({0, 1, 2, 3, 4, 5, 6, 7, 8});
+  for (int k = 0; k < 9; ++k)
+    if (k != 7) m.faces.push_back({(k + 1) % 9, k, 9 + k, 9 + (k + 1) % 9});  // side 7–8 is the boundary
+  const auto [interior, boundary] = extraction_internal::SplitLargePolygons(extraction_internal::kMinResplitAngle, &m);
+  EXPECT_EQ(interior, 0);
+  EXPECT_EQ(boundary, 1);
+  ASSERT_EQ(m.faces.size(), 8u + 4u);  // the ring, three quads and a triangle
+  int triangles = 0;
+  double worst = M_PI;
+  for (const auto& face : m.faces) {
+    if (std::any_of(face.begin(), face.end(), [](int v) { return v >= 9; })) continue;  // the ring
+    EXPECT_LE(face.size(), 4u);
+    triangles += face.size() == 3;
+    if (face.size() == 4) worst = std::min(worst, ShapeAngle(m.position, face));
+  }
+  EXPECT_EQ(triangles, 1);
+  EXPECT_GE(worst, extraction_internal::kLastResortCutAngle);
+  EXPECT_LT(worst, extraction_internal::kMinResplitAngle);  // the last resort, not the usual cut
+}
+
 // The wavy roof × curvature's interior 8-gon (corners rounded to cm; angles 42°, 220°, 171°,
 // 92°, 117°, 174°, 90°, 175°): no two diagonals cut it with every angle in 20°–160°, nor does
 // a vertex joined to every other corner (a reflex or flat corner is left in a quad either
