@@ -88,11 +88,12 @@ Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const st
 // levelset_terms.cc
 // A level-set solve's Ceres problem and which of its residual blocks are smoothness terms
 // (interior and seam edges): the only terms that couple a vertex to the opposite vertices of
-// its edges, and so most of the fill of the normal equations; Solve's preconditioner leaves
-// them out.
+// its edges, and so most of the fill of the normal equations; with cg_steps
+// (levelset.linear_solver = cg) Solve's preconditioner leaves them out.
 struct TermProblem {
   ceres::Problem problem;
   std::unordered_set<ceres::ResidualBlockId> smoothness;
+  bool cg_steps = false;
 };
 // One Ceres solve of at most max_iterations, logged under name; stop_on_stall: also end once
 // past iteration 100 the cost fell by less than 0.5 % over the last 24 (levelset_terms.cc, StallStop).

@@ -28,7 +28,7 @@ LevelSetProblem::LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& 
     : s_(s), geo_(geo), edges_(SmoothedEdges(edges, g, options.smoothness_max_guidance)), g_(g), options_(options), w_(options.weights), h_(h),
       min_angle_(options.min_angle / kDegrees), seams_(seams), seam_terms_(std::move(seam_terms)),
       solution_(solution), phi_(solution->phi), psi_(solution->psi), phi_chart_{&phi_, {}}, psi_chart_{&psi_, {}},
-      boost_(s.num_faces(), 1.0), hinge_angle_(min_angle_) {
+      boost_(s.num_faces(), 1.0), hinge_angle_(min_angle_), cg_steps_(options.linear_solver == "cg") {
   if (seams_ == nullptr) return;
   phi_chart_.map = psi_chart_.map = std::vector<Scalar>(s.num_vertices());
   for (int v = 0; v < s.num_vertices(); ++v) phi_chart_.map[v] = psi_chart_.map[v] = {v};
@@ -125,6 +125,7 @@ void LevelSetProblem::AddPsiTerms(TermProblem* terms, const std::vector<char>* l
 // 1. φ alone.
 Status LevelSetProblem::SolvePhi() {
   TermProblem terms;
+  terms.cg_steps = cg_steps_;
   AddPhiTerms(&terms);
   HoldTips(&terms.problem);
   if (terms.problem.NumResidualBlocks() > 0)
@@ -137,6 +138,7 @@ Status LevelSetProblem::SolvePhi() {
 // 2. ψ with φ held.
 Status LevelSetProblem::SolvePsi() {
   TermProblem terms;
+  terms.cg_steps = cg_steps_;
   AddPsiTerms(&terms);
   for (double& value : phi_)
     if (terms.problem.HasParameterBlock(&value)) terms.problem.SetParameterBlockConstant(&value);
@@ -152,6 +154,7 @@ Status LevelSetProblem::SolvePsi() {
 Status LevelSetProblem::SolveJoint() {
   if (options_.joint_iterations <= 0) return Status::Ok();
   TermProblem terms;
+  terms.cg_steps = cg_steps_;
   AddPhiTerms(&terms);
   AddPsiTerms(&terms);
   HoldTips(&terms.problem);

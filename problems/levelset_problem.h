@@ -71,6 +71,7 @@ class LevelSetProblem {
   double hinge_angle_;
   double barrier_floor_ = kNoFloor;  // CrossingBarrierResidual's floor t in FloorRounds
   std::string prefix_;
+  const bool cg_steps_;  // levelset.linear_solver = cg (TermProblem)
 };
 
 // The rounds' order of two ends (levelset_rounds.cc): smaller is better.

@@ -126,6 +126,7 @@ Status LevelSetProblem::SolveLocal(const std::string& name, const std::vector<ch
                                    const std::vector<char>& live_psi, double floor) {
   barrier_floor_ = floor;
   TermProblem terms;
+  terms.cg_steps = cg_steps_;
   AddPhiTerms(&terms, &live_psi);
   AddPsiTerms(&terms, &live_psi);
   barrier_floor_ = kNoFloor;

@@ -72,25 +72,27 @@ nlohmann::json SummaryJson(const ceres::Solver::Summary& s) {
           {"message", s.message}};
 }
 
-// The linear solver: conjugate gradients on the normal equations, preconditioned by the
-// Cholesky factor (Eigen's, as every solve's: solver/ceres_options.h) of the normal equations
-// without the smoothness terms (Ceres' SUBSET preconditioner). The smoothness term is the only
-// one reading an edge's two opposite vertices; with it the factor of the Great Court's joint
-// solve (12.9k unknowns) took 105 ms an iteration, without it 30 ms, and its weight (0.01
-// against 5–100) leaves conjugate gradients little to do. Each step's iterations go on until
-// the i-th improves the quadratic model by less than kForcing / i of it (Ceres' eta): at
-// Ceres' default 0.1 the inexact steps made a different optimiser
-// (the wavy roof × curvature lost its poles and aligned to 37.8° instead of 2.8°); at 1e-3
-// the steps are the factor's to a few digits (benchmarks/RESULTS.md, "The level sets' linear
-// solver: the smoothness left to conjugate gradients"). Without any smoothness block the
-// factor is exact and the plain sparse Cholesky is used.
+// levelset.linear_solver = cg (cg_steps): each step by conjugate gradients on the normal
+// equations, preconditioned by the Cholesky factor (Eigen's, as every solve's:
+// solver/ceres_options.h) of the normal equations without the smoothness terms (Ceres' SUBSET
+// preconditioner). The smoothness term is the only one reading an edge's two opposite
+// vertices; with it the factor of the Great Court's joint solve (12.9k unknowns) took 105 ms
+// an iteration, without it ~30 ms, and its weight (0.01 against 5–100) leaves conjugate
+// gradients little to do. Each step's iterations go on until the i-th improves the quadratic
+// model by less than kForcing / i of it (Ceres' eta): at Ceres' default 0.1 the inexact steps
+// made a different optimiser (the wavy roof × curvature lost its poles and aligned to 37.8°
+// instead of 2.8°). Not the default: a different draw everywhere, faster (corpus level sets
+// × 0.62–0.83) and as stiff over seven Great Court meshes, but on the corpus 13 of 22 runs met
+// every target instead of 15 and the 309k Great Court's strain layout crossed at 26.5°
+// (benchmarks/RESULTS.md, "The level sets' steps by conjugate gradients"). Without any
+// smoothness block the factor is exact and the plain sparse Cholesky is used.
 constexpr double kForcing = 1e-3;
 
 Status Solve(const std::string& name, int max_iterations, TermProblem* terms, nlohmann::json* summary,
              bool stop_on_stall) {
   ceres::Problem* problem = &terms->problem;
   ceres::Solver::Options options = SparseCholeskyOptions(max_iterations);
-  if (!terms->smoothness.empty()) {
+  if (terms->cg_steps && !terms->smoothness.empty()) {
     std::vector<ceres::ResidualBlockId> blocks;
     problem->GetResidualBlocks(&blocks);
     for (const ceres::ResidualBlockId id : blocks)

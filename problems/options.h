@@ -107,6 +107,12 @@ struct LevelsetOptions {
   // sets ~1.3–1.6× faster, but the Great Court's curvature layout then crosses at 29.4°;
   // benchmarks/RESULTS.md, "Where the level sets' time goes").
   double smoothness_max_guidance = 1.0;
+  // How each Levenberg–Marquardt step's normal equations are solved: "cholesky" (Eigen's sparse
+  // factor, exact) or "cg" (conjugate gradients preconditioned by the factor without the
+  // smoothness terms, which are most of its fill: the joint solve's steps ~2× cheaper, level
+  // sets ~1.2–1.6× faster, a different layout; benchmarks/RESULTS.md, "The level sets' steps by
+  // conjugate gradients").
+  std::string linear_solver = "cholesky";
   // A layout with branch points (tips of sign −1 seams) that still crosses below min_angle or
   // folds over after its rounds is solved again with the spacing asked for within this × h of
   // each branch point following the cone it makes, h|∇u| = (d / (tip_cone_radius · h))^½ at
