@@ -54,26 +54,6 @@ TEST(LevelSets, FlatSquareWithConstantGuidanceGivesStraightEvenLines) {
   EXPECT_NEAR(grad.norm() * 1.5, 1.0, 1e-3);
 }
 
-// levelset.linear_solver chooses each step's solver (report.json's ceres entries name it), and
-// the flat square's straight, even lines come out of either.
-TEST(LevelSets, LinearSolverKeyChoosesTheStepsSolver) {
-  const SurfaceModel s(Plane(12.0, 0.6));
-  const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d&) { return Eigen::Vector3d::UnitX(); });
-  EXPECT_EQ(LevelsetOptions().linear_solver, "cholesky");
-  for (const std::string solver : {"cholesky", "cg"}) {
-    LevelsetOptions options;
-    options.linear_solver = solver;
-    LevelSetSolution solution;
-    ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, &solution).ok());
-    for (const char* solve : {"phi", "psi", "joint"})
-      EXPECT_EQ(solution.solver.at(solve).at("linear_solver"), solver == "cg" ? "CGNR" : "SPARSE_NORMAL_CHOLESKY")
-          << solver << " " << solve;
-    EXPECT_LE(solution.metrics.alignment_rms_deg, 0.1) << solver;
-    EXPECT_LE(solution.metrics.spacing_cv_phi, 1e-3) << solver;
-    EXPECT_GE(solution.metrics.min_crossing_angle_deg, 89.0) << solver;
-  }
-}
-
 // levelset.tip_cone_radius: round a branch point the spacing term asks for the cone's
 // h|∇u| = ρ_f = min(1, (d_f / (R h))^½), and a face's term is w A (h|∇u| − ρ)² / 2. On a plane with
 // a tip at the origin: ρ = 1 from R h on, ½ at a quarter of it, ordered by distance; no tips
@@ -146,54 +126,6 @@ TEST(LevelSets, SmoothnessActsOnlyWhereTheGuidanceIsWeak) {
     EXPECT_NE(std::find(f.begin(), f.end(), e.k), f.end());
     EXPECT_NE(std::find(h.begin(), h.end(), e.l), h.end());
   }
-}
-
-// u_v = target (a test-only term): with it the minimum of smoothness + anchors is known.
-struct AnchorResidual {
-  double target;
-  template <typename T>
-  bool operator()(const T* u, T* r) const {
-    r[0] = u[0] - target;
-    return true;
-  }
-};
-
-// The level-set solves' linear solver: conjugate gradients preconditioned by the factor
-// without the smoothness terms (levelset_terms.cc, Solve). Every smoothness block is recorded,
-// and the solve still lands on the known minimum: φ = x / h zeroes every term — the spacing
-// (h|∇φ| = 1), the smoothness (a linear function has no jump in gradient) and the anchors
-// that single it out among the minima of the other two — from a start 0.1 h off it.
-TEST(LevelSets, SolveLeavesTheSmoothnessToConjugateGradientsAndFindsTheMinimum) {
-  const SurfaceModel s(Plane(12.0, 1.0));
-  const levelset_internal::LevelSetGeometry geo = levelset_internal::Precompute(s);
-  const auto edges = levelset_internal::InteriorEdges(s, geo);
-  const double h = 3.0;
-  std::vector<double> phi(s.num_vertices());
-  for (int v = 0; v < s.num_vertices(); ++v)
-    phi[v] = s.position(v).x() / h + 0.1 * std::sin(s.position(v).x()) * std::cos(0.7 * s.position(v).y());
-  const levelset_internal::Chart chart{&phi, {}};
-  levelset_internal::TermProblem terms;
-  terms.cg_steps = true;  // levelset.linear_solver = cg
-  levelset_internal::AddSpacing(s, geo, h, 5.0, chart, {}, &terms.problem);
-  levelset_internal::AddSmoothness(edges, h, 0.01, chart, &terms);
-  EXPECT_EQ(terms.smoothness.size(), edges.size());
-  for (int v = 0; v < s.num_vertices(); v += 3)
-    terms.problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AnchorResidual, 1, 1>(
-                                       new AnchorResidual{s.position(v).x() / h}),
-                                   nullptr, &phi[v]);
-  nlohmann::json summary;
-  ASSERT_TRUE(levelset_internal::Solve("test", 100, &terms, &summary).ok());
-  EXPECT_LT(summary["final_cost"].get<double>(), 1e-12);
-  EXPECT_EQ(summary["linear_solver"], "CGNR");
-  for (int v = 0; v < s.num_vertices(); ++v) EXPECT_NEAR(phi[v], s.position(v).x() / h, 1e-6) << "vertex " << v;
-  // Without smoothness blocks the factor is the whole system: plain sparse Cholesky.
-  levelset_internal::TermProblem anchors;
-  anchors.cg_steps = true;
-  anchors.problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AnchorResidual, 1, 1>(new AnchorResidual{1.0}),
-                                   nullptr, &phi[0]);
-  ASSERT_TRUE(levelset_internal::Solve("test", 5, &anchors, &summary).ok());
-  EXPECT_EQ(summary["linear_solver"], "SPARSE_NORMAL_CHOLESKY");
-  EXPECT_NEAR(phi[0], 1.0, 1e-6);
 }
 
 // A reference much finer than h/2 is solved on a remeshed working mesh and interpolated back:
