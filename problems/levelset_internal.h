@@ -90,10 +90,16 @@ Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const st
 // (interior and seam edges): the only terms that couple a vertex to the opposite vertices of
 // its edges, and so most of the fill of the normal equations; with cg_steps
 // (levelset.linear_solver = cg) Solve's preconditioner leaves them out.
+// The step solver is fixed at construction, so no solve can forget it; the smoothness blocks
+// are recorded only when cg_steps reads them.
 struct TermProblem {
+  explicit TermProblem(bool cg) : cg_steps(cg) {}
+  void AddSmoothnessBlock(ceres::ResidualBlockId id) {
+    if (cg_steps) smoothness.insert(id);
+  }
   ceres::Problem problem;
-  std::unordered_set<ceres::ResidualBlockId> smoothness;
-  bool cg_steps = false;
+  std::unordered_set<ceres::ResidualBlockId> smoothness;  // empty unless cg_steps
+  const bool cg_steps;
 };
 // One Ceres solve of at most max_iterations, logged under name; stop_on_stall: also end once
 // past iteration 100 the cost fell by less than 0.5 % over the last 24 (levelset_terms.cc, StallStop).

@@ -73,7 +73,7 @@ void LevelSetProblem::AddSeamSmoothness(TermProblem* terms, const Chart& u, cons
     const double sign = seams_->sign[t.path];
     Scalar l = u.At(t.l);
     l = {l.vertex, sign * l.scale, sign * (l.offset - offsets[t.path])};
-    terms->smoothness.insert(AddMapped(&terms->problem, SmoothnessResidual::Create(t.Gf, t.Gg, t.area, t.distance, h_),
+    terms->AddSmoothnessBlock(AddMapped(&terms->problem, SmoothnessResidual::Create(t.Gf, t.Gg, t.area, t.distance, h_),
                                        Weight(w_.smoothness),
                                        {{&u, u.At(t.i_minus)}, {&u, u.At(t.j_minus)}, {&u, u.At(t.k)}, {&u, l}}));
   }
@@ -124,8 +124,7 @@ void LevelSetProblem::AddPsiTerms(TermProblem* terms, const std::vector<char>* l
 
 // 1. φ alone.
 Status LevelSetProblem::SolvePhi() {
-  TermProblem terms;
-  terms.cg_steps = cg_steps_;
+  TermProblem terms(cg_steps_);
   AddPhiTerms(&terms);
   HoldTips(&terms.problem);
   if (terms.problem.NumResidualBlocks() > 0)
@@ -137,8 +136,7 @@ Status LevelSetProblem::SolvePhi() {
 
 // 2. ψ with φ held.
 Status LevelSetProblem::SolvePsi() {
-  TermProblem terms;
-  terms.cg_steps = cg_steps_;
+  TermProblem terms(cg_steps_);
   AddPsiTerms(&terms);
   for (double& value : phi_)
     if (terms.problem.HasParameterBlock(&value)) terms.problem.SetParameterBlockConstant(&value);
@@ -153,8 +151,7 @@ Status LevelSetProblem::SolvePsi() {
 // 3. Both together, so that φ can give way where ψ cannot cross it steeply enough.
 Status LevelSetProblem::SolveJoint() {
   if (options_.joint_iterations <= 0) return Status::Ok();
-  TermProblem terms;
-  terms.cg_steps = cg_steps_;
+  TermProblem terms(cg_steps_);
   AddPhiTerms(&terms);
   AddPsiTerms(&terms);
   HoldTips(&terms.problem);

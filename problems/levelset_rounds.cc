@@ -125,8 +125,7 @@ Status LevelSetProblem::CrossingRounds(const std::string& prefix, double floor) 
 Status LevelSetProblem::SolveLocal(const std::string& name, const std::vector<char>& live_phi,
                                    const std::vector<char>& live_psi, double floor) {
   barrier_floor_ = floor;
-  TermProblem terms;
-  terms.cg_steps = cg_steps_;
+  TermProblem terms(cg_steps_);
   AddPhiTerms(&terms, &live_psi);
   AddPsiTerms(&terms, &live_psi);
   barrier_floor_ = kNoFloor;

@@ -156,7 +156,7 @@ void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weig
   if (weight <= 0.0) return;
   for (const auto& e : edges) {
     if (!Live(live, {e.i, e.j, e.k, e.l})) continue;
-    terms->smoothness.insert(AddMapped(&terms->problem, SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h),
+    terms->AddSmoothnessBlock(AddMapped(&terms->problem, SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h),
                                        Weight(weight), {{&u, u.At(e.i)}, {&u, u.At(e.j)}, {&u, u.At(e.k)}, {&u, u.At(e.l)}}));
   }
 }

@@ -43,11 +43,16 @@ TEST(LevelSets, SolveLeavesTheSmoothnessToConjugateGradientsAndFindsTheMinimum) 
   for (int v = 0; v < s.num_vertices(); ++v)
     phi[v] = s.position(v).x() / h + 0.1 * std::sin(s.position(v).x()) * std::cos(0.7 * s.position(v).y());
   const levelset_internal::Chart chart{&phi, {}};
-  levelset_internal::TermProblem terms;
-  terms.cg_steps = true;  // levelset.linear_solver = cg
+  levelset_internal::TermProblem terms(true);  // levelset.linear_solver = cg
   levelset_internal::AddSpacing(s, geo, h, 5.0, chart, {}, &terms.problem);
   levelset_internal::AddSmoothness(edges, h, 0.01, chart, &terms);
   EXPECT_EQ(terms.smoothness.size(), edges.size());
+  {  // with cholesky the same blocks, none recorded (nothing reads them)
+    levelset_internal::TermProblem plain(false);
+    levelset_internal::AddSmoothness(edges, h, 0.01, chart, &plain);
+    EXPECT_EQ(plain.problem.NumResidualBlocks(), static_cast<int>(edges.size()));
+    EXPECT_TRUE(plain.smoothness.empty());
+  }
   for (int v = 0; v < s.num_vertices(); v += 3)
     terms.problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AnchorResidual, 1, 1>(
                                        new AnchorResidual{s.position(v).x() / h}),
@@ -58,8 +63,7 @@ TEST(LevelSets, SolveLeavesTheSmoothnessToConjugateGradientsAndFindsTheMinimum) 
   EXPECT_EQ(summary["linear_solver"], "CGNR");
   for (int v = 0; v < s.num_vertices(); ++v) EXPECT_NEAR(phi[v], s.position(v).x() / h, 1e-6) << "vertex " << v;
   // Without smoothness blocks the factor is the whole system: plain sparse Cholesky.
-  levelset_internal::TermProblem anchors;
-  anchors.cg_steps = true;
+  levelset_internal::TermProblem anchors(true);
   anchors.problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AnchorResidual, 1, 1>(new AnchorResidual{1.0}),
                                    nullptr, &phi[0]);
   ASSERT_TRUE(levelset_internal::Solve("test", 5, &anchors, &summary).ok());
