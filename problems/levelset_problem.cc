@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <memory>
+#include <thread>
 #include <utility>
 
 #include "problems/residuals/alignment_residual.h"
@@ -20,6 +21,13 @@
 
 namespace pqlayout {
 namespace levelset_internal {
+
+std::vector<int> FixedTips(const LevelSetSeams& seams) {
+  std::vector<int> tips;
+  for (const auto& pair : seams.cut->copy_pairs())
+    if (pair.minus == pair.plus && seams.sign[pair.path] < 0) tips.push_back(pair.minus);
+  return tips;
+}
 
 LevelSetProblem::LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& geo,
                                  const std::vector<InteriorEdge>& edges, const GuidanceField& g,
@@ -32,12 +40,10 @@ LevelSetProblem::LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& 
   if (seams_ == nullptr) return;
   phi_chart_.map = psi_chart_.map = std::vector<Scalar>(s.num_vertices());
   for (int v = 0; v < s.num_vertices(); ++v) phi_chart_.map[v] = psi_chart_.map[v] = {v};
+  fixed_tips_ = FixedTips(*seams_);
   for (const auto& pair : seams_->cut->copy_pairs()) {
     const double sign = seams_->sign[pair.path];
-    if (pair.minus == pair.plus) {
-      if (sign < 0) fixed_tips_.push_back(pair.minus);
-      continue;
-    }
+    if (pair.minus == pair.plus) continue;
     phi_chart_.map[pair.plus] = {pair.minus, sign, seams_->phi_offset[pair.path]};
     psi_chart_.map[pair.plus] = {pair.minus, sign, seams_->psi_offset[pair.path]};
   }
@@ -164,6 +170,14 @@ Status LevelSetProblem::SolveJoint() {
 
 namespace {
 
+// The cone's whole solve (φ to the joint, from the initial guess) on its own φ, ψ and Ceres
+// summaries, so that it can run beside the first layout's: TryTipCone merges what it keeps.
+struct ConeSolve {
+  LevelSetSolution solution;
+  std::unique_ptr<LevelSetProblem> problem;
+  Status status;
+};
+
 // What SolveOnMesh keeps for its `finish` (on the heap: with `finish` it outlives the call).
 struct MeshSolveState {
   LevelSetGeometry geo;
@@ -172,10 +186,21 @@ struct MeshSolveState {
   LevelsetOptions plain, cone;     // without and with levelset.tip_cone_radius
   std::vector<double> phi0, psi0;  // the initial guess
   std::unique_ptr<LevelSetProblem> problem;
+  std::unique_ptr<ConeSolve> cone_solve;  // solved alongside the first (levelset.tip_cone_alongside), or null
 };
-// From the initial guess to the joint solve; prefix: the solves' names in the log and report
-// ("cone_" for the retry, so that it does not overwrite the first layout's entries).
-using WholeSolve = std::function<Status(const LevelsetOptions&, const std::string& prefix)>;
+// From the initial guess to the joint solve, into *out with its problem in *problem; prefix: the
+// solves' names in the log and report ("cone_" for the retry, so that it does not overwrite the
+// first layout's entries).
+using WholeSolve = std::function<Status(const LevelsetOptions&, const std::string& prefix, LevelSetSolution* out,
+                                        std::unique_ptr<LevelSetProblem>* problem)>;
+
+// Joins a thread however the scope is left (a std::thread destroyed joinable terminates).
+struct JoinOnExit {
+  std::thread thread;
+  ~JoinOnExit() {
+    if (thread.joinable()) thread.join();
+  }
+};
 
 // 5. The cone's retry (levelset.tip_cone_radius): a layout with branch points that ends, after
 // its rounds, with a fold-over or a face below min_angle is solved again from the initial
@@ -189,24 +214,29 @@ using WholeSolve = std::function<Status(const LevelsetOptions&, const std::strin
 // from where the first layout ended: that retry (the joint solve and its rounds only) was as
 // stiff and 1.5× cheaper on the corpus, but the 962k-triangle Great Court's curvature layout
 // then ended at 26.8° instead of 31.0° (RESULTS, "The cone's second solve from where the
-// first ended: tried, not kept").
+// first ended: tried, not kept"). The cone's solve to its joint usually ran alongside the first
+// (SolveOnMesh); its rounds run here, once it is known to be needed.
 Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSolution* solution) {
+  std::unique_ptr<ConeSolve> cone = std::move(state.cone_solve);
   const LevelSetMetrics without = solution->metrics;
   const double min_angle = state.plain.min_angle;
   if (!(state.cone.tip_cone_radius > 0.0) || state.problem->NumTips() == 0 ||
       (without.foldovers == 0 && without.faces_below_min_angle == 0))
     return Status::Ok();
   LOG(INFO) << "levelset: " << without.faces_below_min_angle << " faces cross below " << min_angle << "° (the worst at "
-            << without.min_crossing_angle_deg << "°, " << without.foldovers << " fold-overs); solving again with the "
-            << "cone's spacing within " << state.cone.tip_cone_radius << " h of its " << state.problem->NumTips()
+            << without.min_crossing_angle_deg << "°, " << without.foldovers << " fold-overs); "
+            << (cone ? "taking the second solve, alongside it, with" : "solving again with")
+            << " the cone's spacing within " << state.cone.tip_cone_radius << " h of its " << state.problem->NumTips()
             << " branch points";
-  const std::vector<double> phi = solution->phi, psi = solution->psi;
-  const std::string rounds_kept = solution->crossing_rounds_kept;
-  std::unique_ptr<LevelSetProblem> plain = std::move(state.problem);
-  PQ_RETURN_IF_ERROR(solve(state.cone, "cone_"));
-  PQ_RETURN_IF_ERROR(state.problem->Rounds());
-  const LevelSetMetrics with = state.problem->Measure();
+  if (!cone) {
+    cone = std::make_unique<ConeSolve>();
+    cone->status = solve(state.cone, "cone_", &cone->solution, &cone->problem);
+  }
+  PQ_RETURN_IF_ERROR(cone->status);
+  PQ_RETURN_IF_ERROR(cone->problem->Rounds());
+  const LevelSetMetrics with = cone->problem->Measure();
   const bool kept = RoundsKey(with, min_angle) < RoundsKey(without, min_angle);
+  solution->solver.update(cone->solution.solver);  // its solves' entries, all "cone_"
   solution->tip_cone = {{"tried", true}, {"kept", kept}, {"radius_h", state.cone.tip_cone_radius},
                         {"min_crossing_without", without.min_crossing_angle_deg},
                         {"min_crossing_with", with.min_crossing_angle_deg},
@@ -216,15 +246,11 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
   LOG(INFO) << "levelset: with the cone " << with.min_crossing_angle_deg << "° (" << with.faces_below_min_angle
             << " faces below, " << with.foldovers << " fold-overs), without " << without.min_crossing_angle_deg
             << "°: " << (kept ? "the cone's layout kept" : "the first layout kept");
-  if (kept) {
-    solution->metrics = with;
-    return Status::Ok();
-  }
-  solution->phi = phi;
-  solution->psi = psi;
-  solution->crossing_rounds_kept = rounds_kept;
-  solution->metrics = without;
-  state.problem = std::move(plain);
+  if (!kept) return Status::Ok();
+  solution->phi = std::move(cone->solution.phi);
+  solution->psi = std::move(cone->solution.psi);
+  solution->crossing_rounds_kept = cone->solution.crossing_rounds_kept;
+  solution->metrics = with;
   return Status::Ok();
 }
 
@@ -232,7 +258,9 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
 
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
 // seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the
-// offsets are set here.
+// offsets are set here. With branch points and levelset.tip_cone_alongside, the cone's solve
+// (TryTipCone) runs on a second thread beside the first layout's, and is joined before this
+// returns, so nothing outlives the surfaces it reads.
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
                    LevelSetSeams* seams, LevelSetSolution* solution, Finish* finish) {
   if (seams != nullptr && seams->cut == nullptr) seams = nullptr;
@@ -247,20 +275,30 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   state->phi0 = solution->phi;
   state->psi0 = solution->psi;
   // The whole solve, φ to the joint (the rounds come with `finish`), from the initial guess.
-  const WholeSolve solve = [state, &s, &g, h, seams, solution](const LevelsetOptions& o, const std::string& prefix) {
-    solution->phi = state->phi0;
-    solution->psi = state->psi0;
-    state->problem = std::make_unique<LevelSetProblem>(
-        s, state->geo, state->edges, g, o, h, seams, state->seam_terms, solution);
-    LevelSetProblem& problem = *state->problem;
-    problem.SetSolvePrefix(prefix);
-    problem.Project();
-    if (prefix.empty()) solution->initial = problem.Measure();  // the same initial guess for the retry
-    PQ_RETURN_IF_ERROR(problem.SolvePhi());
-    PQ_RETURN_IF_ERROR(problem.SolvePsi());
-    return problem.SolveJoint();
+  // Reads s, g, seams and *state, writes only *out and *problem: two can run at once.
+  const WholeSolve solve = [state, &s, &g, h, seams](const LevelsetOptions& o, const std::string& prefix,
+                                                     LevelSetSolution* out, std::unique_ptr<LevelSetProblem>* problem) {
+    out->phi = state->phi0;
+    out->psi = state->psi0;
+    *problem = std::make_unique<LevelSetProblem>(s, state->geo, state->edges, g, o, h, seams, state->seam_terms, out);
+    (*problem)->SetSolvePrefix(prefix);
+    (*problem)->Project();
+    if (prefix.empty()) out->initial = (*problem)->Measure();  // the same initial guess for the retry
+    PQ_RETURN_IF_ERROR((*problem)->SolvePhi());
+    PQ_RETURN_IF_ERROR((*problem)->SolvePsi());
+    return (*problem)->SolveJoint();
   };
-  PQ_RETURN_IF_ERROR(solve(state->plain, ""));
+  {
+    JoinOnExit alongside;
+    if (options.tip_cone_alongside && options.tip_cone_radius > 0.0 && seams != nullptr && !FixedTips(*seams).empty()) {
+      state->cone_solve = std::make_unique<ConeSolve>();
+      ConeSolve* cone = state->cone_solve.get();
+      alongside.thread = std::thread([cone, &state, &solve] {
+        cone->status = solve(state->cone, "cone_", &cone->solution, &cone->problem);
+      });
+    }
+    PQ_RETURN_IF_ERROR(solve(state->plain, "", solution, &state->problem));
+  }
   const auto rounds = [state, solve, solution]() {
     PQ_RETURN_IF_ERROR(state->problem->Rounds());
     solution->metrics = state->problem->Measure();

@@ -74,6 +74,9 @@ class LevelSetProblem {
   const bool cg_steps_;  // levelset.linear_solver = cg (TermProblem)
 };
 
+// The branch points of sign −1 seams, held at a/2 by every solve (LevelSetProblem::NumTips).
+std::vector<int> FixedTips(const LevelSetSeams& seams);
+
 // The rounds' order of two ends (levelset_rounds.cc): smaller is better.
 std::tuple<int, double, double> RoundsKey(const LevelSetMetrics& m, double min_angle_deg);
 
