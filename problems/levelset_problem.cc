@@ -194,6 +194,15 @@ struct MeshSolveState {
 using WholeSolve = std::function<Status(const LevelsetOptions&, const std::string& prefix, LevelSetSolution* out,
                                         std::unique_ptr<LevelSetProblem>* problem)>;
 
+// levelset.tip_cone_alongside: "auto" starts the cone's solve beside the first only where there
+// are cores to spare. On the 2-core machine the two solves slowed each other down (the first
+// layout's level sets 1.13× as long), which where the retry is not needed is a pure loss.
+constexpr unsigned kAlongsideThreads = 4;
+bool ConeAlongside(const LevelsetOptions& options) {
+  if (options.tip_cone_alongside == "auto") return std::thread::hardware_concurrency() >= kAlongsideThreads;
+  return options.tip_cone_alongside == "true";
+}
+
 // Joins a thread however the scope is left (a std::thread destroyed joinable terminates).
 struct JoinOnExit {
   std::thread thread;
@@ -258,7 +267,7 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
 
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
 // seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the
-// offsets are set here. With branch points and levelset.tip_cone_alongside, the cone's solve
+// offsets are set here. With branch points and levelset.tip_cone_alongside (ConeAlongside), the cone's solve
 // (TryTipCone) runs on a second thread beside the first layout's, and is joined before this
 // returns, so nothing outlives the surfaces it reads.
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
@@ -290,7 +299,7 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   };
   {
     JoinOnExit alongside;
-    if (options.tip_cone_alongside && options.tip_cone_radius > 0.0 && seams != nullptr && !FixedTips(*seams).empty()) {
+    if (ConeAlongside(options) && options.tip_cone_radius > 0.0 && seams != nullptr && !FixedTips(*seams).empty()) {
       state->cone_solve = std::make_unique<ConeSolve>();
       ConeSolve* cone = state->cone_solve.get();
       alongside.thread = std::thread([cone, &state, &solve] {
