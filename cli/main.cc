@@ -194,8 +194,8 @@ CLI::App* AddSweepCommand(CLI::App* app, SweepArguments* args) {
       ->type_size(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   sweep->add_option("-j,--jobs", args->jobs,
                     "runs at a time, each its own process (each on `threads` threads, default 1; with 4 or more "
-                    "hardware threads a second one for the cone's retry where a layout has branch points): -j = "
-                    "cores, with --set levelset.tip_cone_alongside=false to keep each run on one")
+                    "hardware threads a second one for the second layouts a run may need: levelset.alongside): -j = "
+                    "cores, with --set levelset.alongside=false to keep each run on one")
       ->check(CLI::Range(1, 256))->capture_default_str();
   sweep->add_option("--out", args->options.out_dir, "sweep folder (default: out/<config name>-sweep)");
   sweep->add_option("--until", args->options.until, "last stage of every run")

@@ -250,11 +250,11 @@ KeyTable::KeyTable(Config* c) {
          "folds over after its rounds is solved again with the spacing term following the cone within this of each "
          "branch point, h|∇u| = (d / (this × h))^½ at distance d instead of 1 (the cells there grow instead of "
          "shearing), and the better end kept (0: no second solve)");
-  Choice("levelset.tip_cone_alongside", &c->levelset.tip_cone_alongside, {"auto", "true", "false"},
-         "true: start that second solve on a second thread alongside the first wherever the layout has branch "
-         "points (the same outputs; on 2 cores the level sets 0.73× as long where the retry runs, 1.13× where its "
-         "work is thrown away); false: one thread, the second solve only when needed; auto: true on machines with "
-         "at least 4 hardware threads");
+  Choice("levelset.alongside", &c->levelset.alongside, {"auto", "true", "false"},
+         "true: solve the second layouts that may be needed (the cone's retry where the layout has branch points, "
+         "the layout with poles where the guidance has crowns) on a second thread beside the first from the start "
+         "(the same outputs; on 2 cores the level sets ~0.7× as long where they are needed, up to 2× where their work "
+         "is thrown away); false: one thread, each only once needed; auto: true with at least 4 hardware threads");
   Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000, "Ceres iterations of the φ solve and of the ψ solve");
   Integer("levelset.joint_iterations", &c->levelset.joint_iterations, 0, 100000,
           "Ceres iterations of the final solve of φ and ψ together, at most (0: none; past 100 it "

@@ -6,9 +6,11 @@
 #include <ceres/ceres.h>
 
 #include <array>
+#include <exception>
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <thread>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -126,6 +128,49 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
 // for φ, ψ: the crossing rounds, the final metrics and whatever the caller's layers do after.
 using Finish = std::function<Status()>;
 
+// levelset.alongside: whether a second layout that may be needed — the poles' (SolveLevelSets)
+// and the cone's retry (SolveOnMesh) — is solved on a second thread beside the first from the
+// start. Each solve is single-threaded on its own data, so the outputs are the same either way.
+// "auto": only with at least kAlongsideThreads hardware threads: on the 2-core machine the two
+// solves slowed each other down (the first layout's level sets 1.13× as long), a pure loss
+// where the second layout is not needed (benchmarks/RESULTS.md, "The second layouts alongside
+// the first").
+inline constexpr unsigned kAlongsideThreads = 4;
+inline bool SolveAlongside(const LevelsetOptions& options) {
+  if (options.alongside == "auto") return std::thread::hardware_concurrency() >= kAlongsideThreads;
+  return options.alongside == "true";
+}
+// One solve on a second thread (levelset.alongside), joined however the scope is left (a
+// std::thread destroyed joinable would end the process); an exception thrown in it
+// (std::bad_alloc) becomes its Status instead.
+class AlongsideSolve {
+ public:
+  AlongsideSolve() = default;
+  AlongsideSolve(const AlongsideSolve&) = delete;
+  AlongsideSolve& operator=(const AlongsideSolve&) = delete;
+  ~AlongsideSolve() {
+    if (thread_.joinable()) thread_.join();
+  }
+  void Start(std::function<Status()> solve) {
+    thread_ = std::thread([this, solve = std::move(solve)] {
+      try {
+        status_ = solve();
+      } catch (const std::exception& e) {
+        status_ = Status::Internal(std::string("levelset: a solve alongside failed: ") + e.what());
+      }
+    });
+  }
+  // Its Status once it has ended (Ok if never started).
+  Status Join() {
+    if (thread_.joinable()) thread_.join();
+    return status_;
+  }
+
+ private:
+  std::thread thread_;
+  Status status_ = Status::Ok();
+};
+
 // levelset_problem.cc
 // finish: null, the whole solve; else it stops after the joint solve with solution->metrics
 // measured there and leaves the rounds in *finish (SolveLevelSets compares layouts there).
@@ -139,5 +184,12 @@ Status SolveWithSeams(const SurfaceModel& s, const GuidanceField& g, const Level
 // levelset_poles.cc
 std::vector<LevelSetCap> FindCaps(const SurfaceModel& s, const GuidanceField& g, double h);
 Status CutCaps(const SurfaceModel& s, const GuidanceField& g, std::vector<LevelSetCap>* caps, std::shared_ptr<const SurfaceModel>* holed, GuidanceField* holed_guidance);
+// A whole layout's solve into *out; with a Finish it stops after the joint solve (SolveOnMesh).
+using LayoutSolve = std::function<Status(LevelSetSolution* out, Finish* finish)>;
+// The layout without poles, or with poles at the crowns (caps) where it misaligns or folds over
+// and they align clearly better; alongside (levelset.alongside): the poles' layout solved on a
+// second thread from the start.
+Status ChoosePoles(std::vector<LevelSetCap> caps, const LayoutSolve& plain, const LayoutSolve& poles, bool alongside,
+                   LevelSetSolution* solution);
 
 }  // namespace pqlayout::levelset_internal

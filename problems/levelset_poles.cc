@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_validation.h"
@@ -25,6 +26,8 @@ constexpr double kCapShare = 0.25;       // ... and this share of the crown's di
                                          // so that the rays stay ≳ 0.2 h apart at the cap (square
                                          // dome: 5 triangles next to the cap at 0.2, 3 at 0.25)
 constexpr double kCapClearance = 2.0;    // × h: rings between the cap and the boundary, at least
+constexpr double kPoleGain = 0.75;       // poles are kept if they align to below this × the layout without
+constexpr double kPoleTryAbove = 8.0;    // °: poles are tried only if the layout without aligns worse, or folds over
 
 std::vector<LevelSetCap> FindCaps(const SurfaceModel& s, const GuidanceField& g, double h) {
   // Nothing strongly guided (a dome's curvature field: umbilic all over): nothing to align.
@@ -85,6 +88,87 @@ Status CutCaps(const SurfaceModel& s, const GuidanceField& g, std::vector<LevelS
   holed_guidance->scale = g.scale;
   for (const int f : kept) AppendFace(g, f, holed_guidance);
   *holed = std::move(model);
+  return Status::Ok();
+}
+
+// The layout with poles at the crowns (caps) or without: plain and poles solve each into
+// their LevelSetSolution (with a Finish: to the joint solve, the rest left there).
+Status ChoosePoles(std::vector<LevelSetCap> caps, const LayoutSolve& plain, const LayoutSolve& poles, bool alongside,
+                   LevelSetSolution* solution) {
+  // The layout without poles first. Poles are tried only if it misses the alignment target
+  // (kPoleTryAbove, report.json's) or folds over: a pole buys alignment at the crown with the
+  // rays' uneven spacing, and solving both layouts doubles the stage's time (the Great Court ×
+  // strain has two crowns, both cancelled ±½ pairs in weak guidance, and aligns to 5.9°
+  // without; with poles it was 6.0°, not kept, at twice the time).
+  // The layouts are compared after their joint solves, and only the one kept runs its
+  // crossing rounds (a few seconds to a minute each): the rounds move φ within one vertex ring
+  // of the faces they lift and change alignment by at most 2.6° (measured on every corpus run
+  // with a crown: 5.2–35.7° after the joint solve against 5.9–38.2° at the end), while the
+  // poles are kept only where they align clearly better (kPoleGain). On the corpus every
+  // decision came out as when both layouts were finished (benchmarks/RESULTS.md, 2026-12-04).
+  // A layout without poles that aligns after its joint solve is finished first; if its rounds
+  // leave a fold-over, the poles are tried as a whole layout and compared finished.
+  // levelset.alongside: the poles' layout, to its joint solves, on a second thread from the
+  // start, in case it is needed (plain and poles read nothing the other writes; each finish
+  // runs here, on this thread).
+  Finish finish_plain, finish_poles;
+  LevelSetSolution with_poles;
+  Status poles_status = Status::Ok();
+  {
+    AlongsideSolve ahead;
+    if (alongside) {
+      LOG(INFO) << "levelset: " << caps.size() << " crown(s) of the guidance: the layout with poles there solved "
+                << "alongside, in case it is needed";
+      ahead.Start([&] { return poles(&with_poles, &finish_poles); });
+    }
+    PQ_RETURN_IF_ERROR(plain(solution, &finish_plain));
+    poles_status = ahead.Join();
+  }
+  bool finished = false;
+  if (solution->metrics.alignment_rms_deg_strong <= kPoleTryAbove) {
+    PQ_RETURN_IF_ERROR(finish_plain());
+    finished = true;
+    if (solution->metrics.foldovers == 0) {
+      LOG(INFO) << "levelset: " << caps.size() << " crown(s) of the guidance, no pole tried: the layout aligns to "
+                << solution->metrics.alignment_rms_deg_strong << "° where weight > 0.5 without";
+      solution->rejected_poles = {{"crowns", caps.size()},
+                                  {"tried", false},
+                                  {"alignment_without", solution->metrics.alignment_rms_deg_strong}};
+      return Status::Ok();
+    }
+  }
+  // Both layouts, the poles' kept only if they align clearly better (kPoleGain) without more
+  // fold-overs: where the crown sits in weak guidance or the field is no dome's (the L-shaped
+  // roof, the hypar, the wavy roof under strain: 15.5°, 12.8°, 17.0° against 10.3°, 12.9°,
+  // 16.6° without, after the joint solves) the fan only costs.
+  for (const LevelSetCap& c : caps)
+    LOG(INFO) << "levelset: a crown of the guidance at (" << c.centre.x() << ", " << c.centre.y()
+              << "): trying a pole, its cap " << c.radius << " m in radius left out of the solve";
+  if (!alongside) {
+    PQ_RETURN_IF_ERROR(poles(&with_poles, finished ? nullptr : &finish_poles));
+  } else {
+    PQ_RETURN_IF_ERROR(poles_status);
+    if (finished) PQ_RETURN_IF_ERROR(finish_poles());  // as if solved whole: the plain layout was
+  }
+  const LevelSetMetrics a = with_poles.metrics, b = solution->metrics;
+  const bool better = a.alignment_rms_deg_strong < kPoleGain * b.alignment_rms_deg_strong && a.foldovers <= b.foldovers;
+  const char* when = finished ? "finished" : "after the joint solves";
+  LOG(INFO) << "levelset: with " << caps.size() << " pole(s) alignment " << a.alignment_rms_deg_strong << "° where weight > 0.5 ("
+            << a.foldovers << " fold-overs), without " << b.alignment_rms_deg_strong << "° (" << b.foldovers
+            << "), " << when << ": " << (better ? "poles kept" : "no poles");
+  if (!better) {
+    if (!finished) PQ_RETURN_IF_ERROR(finish_plain());
+    solution->rejected_poles = {{"crowns", caps.size()},
+                                {"tried", true},
+                                {"compared", when},
+                                {"alignment_with_poles", a.alignment_rms_deg_strong},
+                                {"alignment_without", b.alignment_rms_deg_strong},
+                                {"foldovers_with_poles", a.foldovers}};
+    return Status::Ok();
+  }
+  if (!finished) PQ_RETURN_IF_ERROR(finish_poles());
+  *solution = std::move(with_poles);
+  solution->caps = std::move(caps);
   return Status::Ok();
 }
 

@@ -10,7 +10,6 @@
 
 #include <functional>
 #include <memory>
-#include <thread>
 #include <utility>
 
 #include "problems/residuals/alignment_residual.h"
@@ -186,30 +185,13 @@ struct MeshSolveState {
   LevelsetOptions plain, cone;     // without and with levelset.tip_cone_radius
   std::vector<double> phi0, psi0;  // the initial guess
   std::unique_ptr<LevelSetProblem> problem;
-  std::unique_ptr<ConeSolve> cone_solve;  // solved alongside the first (levelset.tip_cone_alongside), or null
+  std::unique_ptr<ConeSolve> cone_solve;  // solved alongside the first (levelset.alongside), or null
 };
 // From the initial guess to the joint solve, into *out with its problem in *problem; prefix: the
 // solves' names in the log and report ("cone_" for the retry, so that it does not overwrite the
 // first layout's entries).
 using WholeSolve = std::function<Status(const LevelsetOptions&, const std::string& prefix, LevelSetSolution* out,
                                         std::unique_ptr<LevelSetProblem>* problem)>;
-
-// levelset.tip_cone_alongside: "auto" starts the cone's solve beside the first only where there
-// are cores to spare. On the 2-core machine the two solves slowed each other down (the first
-// layout's level sets 1.13× as long), which where the retry is not needed is a pure loss.
-constexpr unsigned kAlongsideThreads = 4;
-bool ConeAlongside(const LevelsetOptions& options) {
-  if (options.tip_cone_alongside == "auto") return std::thread::hardware_concurrency() >= kAlongsideThreads;
-  return options.tip_cone_alongside == "true";
-}
-
-// Joins a thread however the scope is left (a std::thread destroyed joinable terminates).
-struct JoinOnExit {
-  std::thread thread;
-  ~JoinOnExit() {
-    if (thread.joinable()) thread.join();
-  }
-};
 
 // 5. The cone's retry (levelset.tip_cone_radius): a layout with branch points that ends, after
 // its rounds, with a fold-over or a face below min_angle is solved again from the initial
@@ -267,7 +249,7 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
 
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
 // seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the
-// offsets are set here. With branch points and levelset.tip_cone_alongside (ConeAlongside), the cone's solve
+// offsets are set here. With branch points and levelset.alongside (SolveAlongside), the cone's solve
 // (TryTipCone) runs on a second thread beside the first layout's, and is joined before this
 // returns, so nothing outlives the surfaces it reads.
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
@@ -298,15 +280,14 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     return (*problem)->SolveJoint();
   };
   {
-    JoinOnExit alongside;
-    if (ConeAlongside(options) && options.tip_cone_radius > 0.0 && seams != nullptr && !FixedTips(*seams).empty()) {
+    AlongsideSolve alongside;
+    if (SolveAlongside(options) && options.tip_cone_radius > 0.0 && seams != nullptr && !FixedTips(*seams).empty()) {
       state->cone_solve = std::make_unique<ConeSolve>();
       ConeSolve* cone = state->cone_solve.get();
-      alongside.thread = std::thread([cone, &state, &solve] {
-        cone->status = solve(state->cone, "cone_", &cone->solution, &cone->problem);
-      });
+      alongside.Start([cone, &state, &solve] { return solve(state->cone, "cone_", &cone->solution, &cone->problem); });
     }
     PQ_RETURN_IF_ERROR(solve(state->plain, "", solution, &state->problem));
+    if (state->cone_solve) state->cone_solve->status = alongside.Join();
   }
   const auto rounds = [state, solve, solution]() {
     PQ_RETURN_IF_ERROR(state->problem->Rounds());

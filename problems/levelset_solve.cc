@@ -100,8 +100,6 @@ double SliverFraction(const SurfaceModel& s) {
 // curvature 1.0 → 0.83), a cause not found yet (benchmarks/RESULTS.md, 2026-12-03).
 constexpr int kPlanFromTriangles = 200000;
 constexpr double kCancelDistance = 2.0;  // × h: two ±½ singularities closer than this get no seam
-constexpr double kPoleGain = 0.75;      // poles are kept if they align to below this × the layout without
-constexpr double kPoleTryAbove = 8.0;  // °: poles are tried only if the layout without aligns worse, or folds over
 constexpr double kMinSeamWeight = 1.0;   // × h: a seam whose path has less weighted length is not cut
 constexpr double kCancelInZone = 3.0;    // × h: two of one sign in one weak zone closer than this get no seam
 
@@ -422,66 +420,11 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
   GuidanceField holed_guidance;
   if (!caps.empty()) PQ_RETURN_IF_ERROR(CutCaps(m, mg, &caps, &holed, &holed_guidance));
   if (!holed) return plain(solution, nullptr);
-  // The layout without poles first. Poles are tried only if it misses the alignment target
-  // (kPoleTryAbove, report.json's) or folds over: a pole buys alignment at the crown with the
-  // rays' uneven spacing, and solving both layouts doubles the stage's time (the Great Court ×
-  // strain has two crowns, both cancelled ±½ pairs in weak guidance, and aligns to 5.9°
-  // without; with poles it was 6.0°, not kept, at twice the time).
-  // The layouts are compared after their joint solves, and only the one kept runs its
-  // crossing rounds (a few seconds to a minute each): the rounds move φ within one vertex ring
-  // of the faces they lift and change alignment by at most 2.6° (measured on every corpus run
-  // with a crown: 5.2–35.7° after the joint solve against 5.9–38.2° at the end), while the
-  // poles are kept only where they align clearly better (kPoleGain). On the corpus every
-  // decision came out as when both layouts were finished (benchmarks/RESULTS.md, 2026-12-04).
-  // A layout without poles that aligns after its joint solve is finished first; if its rounds
-  // leave a fold-over, the poles are tried as a whole layout and compared finished.
-  Finish finish_plain;
-  PQ_RETURN_IF_ERROR(plain(solution, &finish_plain));
-  bool finished = false;
-  if (solution->metrics.alignment_rms_deg_strong <= kPoleTryAbove) {
-    PQ_RETURN_IF_ERROR(finish_plain());
-    finished = true;
-    if (solution->metrics.foldovers == 0) {
-      LOG(INFO) << "levelset: " << caps.size() << " crown(s) of the guidance, no pole tried: the layout aligns to "
-                << solution->metrics.alignment_rms_deg_strong << "° where weight > 0.5 without";
-      solution->rejected_poles = {{"crowns", caps.size()},
-                                  {"tried", false},
-                                  {"alignment_without", solution->metrics.alignment_rms_deg_strong}};
-      return Status::Ok();
-    }
-  }
-  // Both layouts, the poles' kept only if they align clearly better (kPoleGain) without more
-  // fold-overs: where the crown sits in weak guidance or the field is no dome's (the L-shaped
-  // roof, the hypar, the wavy roof under strain: 15.5°, 12.8°, 17.0° against 10.3°, 12.9°,
-  // 16.6° without, after the joint solves) the fan only costs.
-  for (const LevelSetCap& c : caps)
-    LOG(INFO) << "levelset: a crown of the guidance at (" << c.centre.x() << ", " << c.centre.y()
-              << "): trying a pole, its cap " << c.radius << " m in radius left out of the solve";
-  LevelSetSolution with_poles;
-  Finish finish_poles;
-  PQ_RETURN_IF_ERROR(SolveOnWorking(s, holed, holed_guidance, options, h, &with_poles, true,
-                                    finished ? nullptr : &finish_poles));
-  with_poles.working_mesh = working_kind;
-  with_poles.working_edge = solution->working_edge;
-  const LevelSetMetrics a = with_poles.metrics, b = solution->metrics;
-  const bool better = a.alignment_rms_deg_strong < kPoleGain * b.alignment_rms_deg_strong && a.foldovers <= b.foldovers;
-  const char* when = finished ? "finished" : "after the joint solves";
-  LOG(INFO) << "levelset: with " << caps.size() << " pole(s) alignment " << a.alignment_rms_deg_strong << "° where weight > 0.5 ("
-            << a.foldovers << " fold-overs), without " << b.alignment_rms_deg_strong << "° (" << b.foldovers
-            << "), " << when << ": " << (better ? "poles kept" : "no poles");
-  if (!better) {
-    if (!finished) PQ_RETURN_IF_ERROR(finish_plain());
-    solution->rejected_poles = {{"crowns", caps.size()},
-                                {"tried", true},
-                                {"compared", when},
-                                {"alignment_with_poles", a.alignment_rms_deg_strong},
-                                {"alignment_without", b.alignment_rms_deg_strong},
-                                {"foldovers_with_poles", a.foldovers}};
-    return Status::Ok();
-  }
-  if (!finished) PQ_RETURN_IF_ERROR(finish_poles());
-  *solution = std::move(with_poles);
-  solution->caps = std::move(caps);
-  return Status::Ok();
+  const auto poles = [&](LevelSetSolution* out, Finish* finish) {
+    out->working_mesh = working_kind;
+    out->working_edge = working_edge;
+    return SolveOnWorking(s, holed, holed_guidance, options, h, out, true, finish);
+  };
+  return ChoosePoles(std::move(caps), plain, poles, SolveAlongside(options), solution);
 }
 }  // namespace pqlayout

@@ -120,14 +120,14 @@ struct LevelsetOptions {
   // h apart there without shearing the cells, and the shear is where the worst crossing was a
   // draw (benchmarks/RESULTS.md, "The cone's spacing round the branch points").
   double tip_cone_radius = 1.5;
-  // Whether that second solve is started on a second thread as the first layout's begins,
-  // wherever the layout has branch points: "true", "false" (one thread, the second solve only
-  // when needed) or "auto" (true on a machine with at least 4 hardware threads: ConeAlongside).
-  // Each solve is single-threaded on its own data, so the outputs are the same either way. On
-  // the 2-core machine the level sets took 0.73× as long where the retry ran and 1.13× where it
-  // did not (the spare thread's work thrown away, and the two solves slowing each other down):
-  // benchmarks/RESULTS.md, "The cone's second solve alongside the first".
-  std::string tip_cone_alongside = "auto";
+  // Whether the second layouts that may be needed — that second solve, and the layout with
+  // poles (levelset.poles) — are started on a second thread as the first layout's begins:
+  // "true", "false" (one thread, each only once it is needed) or "auto" (true on a machine with
+  // at least 4 hardware threads: SolveAlongside). Each solve is single-threaded on its own data,
+  // so the outputs are the same either way. On the 2-core machine the level sets took ~0.7× as
+  // long where the second layout was needed, but 1.13–2× where it was not (its work thrown away,
+  // the two solves slowing each other down): benchmarks/RESULTS.md, "The second layouts alongside the first".
+  std::string alongside = "auto";
   int max_iterations = 50;    // Ceres iterations of the φ solve and of the ψ solve
   int joint_iterations = 300; // Ceres iterations of the final joint solve, at most (0: none; stall stop past 100)
   int crossing_rounds = 10;   // local re-solves raising transversality where the crossing is below min_angle, at most (0: none); floor rounds too where they fail
