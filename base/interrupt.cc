@@ -11,6 +11,7 @@ namespace {
 
 std::atomic<int> g_signal{0};
 std::atomic<InterruptPoll> g_poll{nullptr};
+thread_local const std::atomic<bool>* t_cancel = nullptr;
 static_assert(std::atomic<int>::is_always_lock_free, "the handler may only touch a lock-free atomic");
 
 extern "C" void RecordSignal(int signal) {
@@ -52,6 +53,10 @@ Status CheckInterrupt() {
   if (signal == 0) return Status::Ok();
   return Status::Internal("interrupted by signal " + std::to_string(signal) + " (" + strsignal(signal) + ")");
 }
+
+void SetThreadCancelFlag(const std::atomic<bool>* flag) { t_cancel = flag; }
+
+bool ThreadCancelled() { return t_cancel != nullptr && t_cancel->load(); }
 
 void SetInterruptForTesting(int signal) { g_signal.store(signal); }
 

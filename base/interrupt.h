@@ -18,6 +18,8 @@
 // SIGKILL; the staging folder it leaves is removed by the next run into the same folder.
 #pragma once
 
+#include <atomic>
+
 #include "base/status.h"
 
 namespace pqlayout {
@@ -49,6 +51,14 @@ int PollInterrupt();
 // Forgets a recorded signal, so that the next run in the same process starts afresh
 // (the Python module, between runs; tests).
 void ClearInterrupt();
+
+// One thread's own stop request, not a signal: a solve started on a second thread in case its
+// result is needed (levelset.alongside) is cancelled once it is not (AlongsideSolve). While a
+// flag is installed on a thread, ThreadCancelled() there returns its value; the Ceres callback
+// (solver/ceres_options.h) ends that thread's solves within one iteration of it being set.
+// Nothing is recorded: the other threads and the run carry on. nullptr removes it.
+void SetThreadCancelFlag(const std::atomic<bool>* flag);
+bool ThreadCancelled();
 
 // Tests: behave as if `signal` had been received (0: as if none had).
 void SetInterruptForTesting(int signal);

@@ -253,7 +253,7 @@ Status PlanSweep(const SweepOptions& options, SweepPlan* plan) {
       if (!status.ok()) {
         // The config says "--set KEY=VALUE: KEY: reason"; say "--param SPEC: value VALUE: reason".
         std::string message = status.message();
-        for (const std::string prefix : {"--set " + overrides.back() + ": ", parameter.key + ": "})
+        for (const std::string& prefix : {"--set " + overrides.back() + ": ", parameter.key + ": "})
           if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
         if (message.rfind("unknown key", 0) == 0 || message.rfind("is a section", 0) == 0)
           return Status::InvalidInput("--param " + spec + ": " + parameter.key + ": " + message);

@@ -6,6 +6,7 @@
 #include <ceres/ceres.h>
 
 #include <array>
+#include <atomic>
 #include <exception>
 #include <functional>
 #include <initializer_list>
@@ -19,6 +20,7 @@
 #include <Eigen/Sparse>
 #include <nlohmann/json.hpp>
 
+#include "base/interrupt.h"
 #include "problems/guidance.h"
 #include "problems/levelset.h"
 
@@ -142,22 +144,27 @@ inline bool SolveAlongside(const LevelsetOptions& options) {
 }
 // One solve on a second thread (levelset.alongside), joined however the scope is left (a
 // std::thread destroyed joinable would end the process); an exception thrown in it
-// (std::bad_alloc) becomes its Status instead.
+// (std::bad_alloc) becomes its Status instead. Left without Join (the first layout failed,
+// so the second is not wanted), it is cancelled first: its Ceres solves end within one
+// iteration (ThreadCancelled) instead of running to their end before the failure is reported.
 class AlongsideSolve {
  public:
   AlongsideSolve() = default;
   AlongsideSolve(const AlongsideSolve&) = delete;
   AlongsideSolve& operator=(const AlongsideSolve&) = delete;
   ~AlongsideSolve() {
+    cancel_ = true;
     if (thread_.joinable()) thread_.join();
   }
   void Start(std::function<Status()> solve) {
     thread_ = std::thread([this, solve = std::move(solve)] {
+      SetThreadCancelFlag(&cancel_);
       try {
         status_ = solve();
       } catch (const std::exception& e) {
         status_ = Status::Internal(std::string("levelset: a solve alongside failed: ") + e.what());
       }
+      SetThreadCancelFlag(nullptr);
     });
   }
   // Its Status once it has ended (Ok if never started).
@@ -167,6 +174,7 @@ class AlongsideSolve {
   }
 
  private:
+  std::atomic<bool> cancel_{false};
   std::thread thread_;
   Status status_ = Status::Ok();
 };

@@ -193,6 +193,10 @@ struct MeshSolveState {
 using WholeSolve = std::function<Status(const LevelsetOptions&, const std::string& prefix, LevelSetSolution* out,
                                         std::unique_ptr<LevelSetProblem>* problem)>;
 
+// Whether a layout with `tips` branch points may be solved again with the cone: the one gate
+// of the retry (TryTipCone) and of its solve alongside the first layout (SolveOnMesh).
+bool MayRetryWithCone(const LevelsetOptions& options, int tips) { return options.tip_cone_radius > 0.0 && tips > 0; }
+
 // 5. The cone's retry (levelset.tip_cone_radius): a layout with branch points that ends, after
 // its rounds, with a fold-over or a face below min_angle is solved again from the initial
 // guess with the spacing term following the cone round each branch point (ConeSpacingTargets),
@@ -211,7 +215,7 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
   std::unique_ptr<ConeSolve> cone = std::move(state.cone_solve);
   const LevelSetMetrics without = solution->metrics;
   const double min_angle = state.plain.min_angle;
-  if (!(state.cone.tip_cone_radius > 0.0) || state.problem->NumTips() == 0 ||
+  if (!MayRetryWithCone(state.cone, state.problem->NumTips()) ||
       (without.foldovers == 0 && without.faces_below_min_angle == 0))
     return Status::Ok();
   LOG(INFO) << "levelset: " << without.faces_below_min_angle << " faces cross below " << min_angle << "° (the worst at "
@@ -281,7 +285,8 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   };
   {
     AlongsideSolve alongside;
-    if (SolveAlongside(options) && options.tip_cone_radius > 0.0 && seams != nullptr && !FixedTips(*seams).empty()) {
+    const int tips = seams != nullptr ? static_cast<int>(FixedTips(*seams).size()) : 0;
+    if (SolveAlongside(options) && MayRetryWithCone(options, tips)) {
       state->cone_solve = std::make_unique<ConeSolve>();
       ConeSolve* cone = state->cone_solve.get();
       alongside.Start([cone, &state, &solve] { return solve(state->cone, "cone_", &cone->solution, &cone->problem); });

@@ -16,11 +16,12 @@ namespace pqlayout {
 
 // Ends a solve at the next iteration once SIGINT or SIGTERM has been received, or an
 // embedding's poll asks to stop (base/interrupt.h): Ceres returns USER_FAILURE, whose solution is not usable, so the
-// stage fails and the run ends as interrupted within one iteration.
+// stage fails and the run ends as interrupted within one iteration. It also ends the solves of
+// a thread whose own work was cancelled (ThreadCancelled: a solve alongside no longer wanted).
 class InterruptCallback : public ceres::IterationCallback {
  public:
   ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    return PollInterrupt() != 0 ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+    return PollInterrupt() != 0 || ThreadCancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
 };
 

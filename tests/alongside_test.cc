@@ -5,13 +5,20 @@
 // (initial and final cost to the last bit, iterations), every metric and the kept end identical.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include <ceres/ceres.h>
 #include <nlohmann/json.hpp>
 
+#include "base/interrupt.h"
 #include "pipeline/config.h"
 #include "pipeline/pipeline.h"
+#include "problems/levelset_internal.h"
+#include "solver/ceres_options.h"
 
 namespace pqlayout {
 namespace {
@@ -67,6 +74,67 @@ TEST(Alongside, ThePolesLayoutGivesTheSameLevelSets) {
   const nlohmann::json kept = LevelsetStage("corpus/wavy.yaml", wavy, true, "poles_wavy");
   EXPECT_EQ(kept.at("poles").size(), 3u);
   EXPECT_EQ(kept, LevelsetStage("corpus/wavy.yaml", wavy, false, "poles_wavy"));
+}
+
+// Waits up to ~20 s for its thread's cancel flag: 1 if it came, 0 if not (never hangs the test).
+int WaitForCancel(int max_ms) {
+  for (int i = 0; i < max_ms; ++i) {
+    if (ThreadCancelled()) return 1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return 0;
+}
+
+// The first layout failed, so the solve alongside is not wanted: leaving the scope without
+// Join cancels it (its Ceres solves end within one iteration) instead of waiting for its end.
+TEST(Alongside, LeftWithoutJoinTheSolveIsCancelled) {
+  std::atomic<int> saw{-1};
+  {
+    levelset_internal::AlongsideSolve ahead;
+    ahead.Start([&saw] {
+      saw = WaitForCancel(20000);
+      return Status::Ok();
+    });
+  }  // as PQ_RETURN_IF_ERROR leaves it
+  EXPECT_EQ(saw.load(), 1);
+  EXPECT_FALSE(ThreadCancelled());  // the flag was the worker's only
+}
+
+TEST(Alongside, JoinedTheSolveRunsToItsEnd) {
+  std::atomic<int> saw{-1};
+  levelset_internal::AlongsideSolve ahead;
+  ahead.Start([&saw] {
+    saw = WaitForCancel(50);
+    return Status::InvalidInput("its own status");
+  });
+  const Status status = ahead.Join();
+  EXPECT_EQ(saw.load(), 0);
+  EXPECT_EQ(status.message(), "its own status");
+}
+
+// r = 10 (x − 3): one Gauss–Newton step to x = 3, unless the thread's work is cancelled.
+struct Shifted {
+  template <typename T>
+  bool operator()(const T* x, T* r) const {
+    r[0] = T(10.0) * (x[0] - T(3.0));
+    return true;
+  }
+};
+
+TEST(Alongside, ACancelledThreadsCeresSolveEndsAtOnce) {
+  for (const bool cancelled : {false, true}) {
+    std::atomic<bool> flag{cancelled};
+    SetThreadCancelFlag(&flag);
+    double x = 0.0;
+    ceres::Problem problem;
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Shifted, 1, 1>(new Shifted), nullptr, &x);
+    ceres::Solver::Summary summary;
+    ceres::Solve(SparseCholeskyOptions(50), &problem, &summary);
+    SetThreadCancelFlag(nullptr);
+    EXPECT_EQ(summary.termination_type, cancelled ? ceres::USER_FAILURE : ceres::CONVERGENCE) << cancelled;
+    EXPECT_NEAR(x, cancelled ? 0.0 : 3.0, cancelled ? 0.0 : 1e-6) << cancelled;  // cancelled: not a step taken (LM: 3 − 1e-8)
+    EXPECT_EQ(PollInterrupt(), 0);  // no signal recorded: the run carries on
+  }
 }
 
 }  // namespace

@@ -77,7 +77,9 @@ TEST(OffsetRounding, JointChoiceIsNeverWorseThanRoundingAlone) {
       for (int p = 0; p < k; ++p) {
         const double a = together[p];
         EXPECT_EQ(a, std::round(a));
-        if (sign[p] < 0) EXPECT_EQ(std::abs(std::fmod(a, 2.0)), 1.0) << "seam " << p;
+        if (sign[p] < 0) {
+          EXPECT_EQ(std::abs(std::fmod(a, 2.0)), 1.0) << "seam " << p;
+        }
         EXPECT_LT(std::abs(a - free[p]), sign[p] < 0 ? 2.0 : 1.0) << "seam " << p;
       }
       const double joint = Excess(together, free, block);
