@@ -4,7 +4,8 @@
 // CGAL meshing of 1M faces would take far longer than the figure. Above
 // FigureOptions::max_face_polygons faces the figure writers resample the face colours onto
 // a 2 px grid (report/figures.h), so time and size depend on the drawing, not the mesh.
-// Counters: faces, bytes (size of the SVG written).
+// Counters: faces, bytes (size of the SVG written). BM_FieldsVtk1M: fields.vtk of a run on that
+// mesh (every field the pipeline writes), issue 19's "large field files written fast".
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "geometry/field_writers.h"
 #include "geometry/surface_model.h"
 #include "report/figures.h"
 
@@ -83,6 +85,35 @@ void BM_GuidanceFigure1M(benchmark::State& state) {
   state.counters["bytes"] = static_cast<double>(std::filesystem::file_size(path));
 }
 BENCHMARK(BM_GuidanceFigure1M)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_FieldsVtk1M(benchmark::State& state) {
+  const SurfaceModel& surface = MillionTriangles();
+  const int nv = surface.num_vertices(), nf = surface.num_faces();
+  SurfaceFields fields;
+  std::vector<double> v_z(nv), phi(nv), psi(nv);
+  std::vector<Eigen::Vector3d> displacement(nv), direction(nf);
+  for (int v = 0; v < nv; ++v) {
+    const Eigen::Vector3d p = surface.position(v);
+    v_z[v] = -0.2 * p.z() / 8.0, phi[v] = p.x() / 3.0, psi[v] = p.y() / 3.0;
+    displacement[v] = Eigen::Vector3d(0.0, 0.0, v_z[v]);
+  }
+  std::vector<double> major(nf), minor(nf), magnitude(nf), weight(nf);
+  for (int f = 0; f < nf; ++f) {
+    const Eigen::Vector3d c = surface.position(surface.face_vertices(f)[0]);
+    direction[f] = Eigen::Vector3d(-c.y(), c.x(), 0.0).normalized();
+    major[f] = 1e-4 * c.x(), minor[f] = -1e-4 * c.y(), magnitude[f] = std::abs(major[f]), weight[f] = f % 7 / 6.0;
+  }
+  fields.vertex_scalars = {{"v_z", v_z}, {"phi", phi}, {"psi", psi}};
+  fields.vertex_vectors = {{"displacement", displacement}};
+  fields.face_scalars = {{"strain_max", major}, {"strain_min", minor}, {"magnitude", magnitude}, {"weight", weight}};
+  fields.face_vectors = {{"guidance", direction}};
+  const std::string path = (std::filesystem::temp_directory_path() / "figure_benchmark_fields.vtk").string();
+  for (auto _ : state)
+    if (!WriteFieldsVtk(surface, fields, path).ok()) state.SkipWithError("write failed");
+  state.counters["faces"] = nf;
+  state.counters["bytes"] = static_cast<double>(std::filesystem::file_size(path));
+}
+BENCHMARK(BM_FieldsVtk1M)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace pqlayout

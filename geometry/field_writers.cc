@@ -1,5 +1,8 @@
 #include "geometry/field_writers.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <initializer_list>
 #include <string>
 
@@ -30,34 +33,60 @@ std::string VtkName(std::string name) {
 
 }  // namespace
 
+namespace {
+
+// Legacy VTK's binary data: big-endian, doubles and 32-bit ints.
+template <typename T>
+void AppendBigEndian(std::string* s, T value) {
+  static_assert(sizeof(T) == 8 || sizeof(T) == 4);
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  std::reverse(bytes, bytes + sizeof(T));
+#endif
+  s->append(bytes, sizeof(T));
+}
+
+void AppendVectors(std::string* s, const std::vector<Eigen::Vector3d>& values) {
+  for (const auto& x : values)
+    for (int d = 0; d < 3; ++d) AppendBigEndian(s, x[d]);
+  s->push_back('\n');
+}
+
+}  // namespace
+
 Status WriteFieldsVtk(const SurfaceModel& surface, const SurfaceFields& fields, const std::string& path,
                       const Eigen::Vector3d& origin) {
-  std::string s = "# vtk DataFile Version 3.0\npqlayout reference surface and fields\nASCII\nDATASET POLYDATA\n";
-  s += "POINTS " + std::to_string(surface.num_vertices()) + " double\n";
-  for (int v = 0; v < surface.num_vertices(); ++v) {
-    const Eigen::Vector3d p = surface.position(v) + origin;
-    AppendRow(&s, {p.x(), p.y(), p.z()});
+  const int nv = surface.num_vertices(), nf = surface.num_faces();
+  std::string s = "# vtk DataFile Version 3.0\npqlayout reference surface and fields\nBINARY\nDATASET POLYDATA\n";
+  s.reserve(s.size() + 24 * static_cast<size_t>(nv) * (2 + fields.vertex_vectors.size()) +
+            16 * static_cast<size_t>(nf) * (2 + fields.face_vectors.size() + fields.face_scalars.size()));
+  s += "POINTS " + std::to_string(nv) + " double\n";
+  std::vector<Eigen::Vector3d> points(nv);
+  for (int v = 0; v < nv; ++v) points[v] = surface.position(v) + origin;
+  AppendVectors(&s, points);
+  s += "POLYGONS " + std::to_string(nf) + " " + std::to_string(4 * nf) + "\n";
+  for (int f = 0; f < nf; ++f) {
+    AppendBigEndian<std::int32_t>(&s, 3);
+    for (const int id : surface.face_vertices(f)) AppendBigEndian<std::int32_t>(&s, id);
   }
-  s += "POLYGONS " + std::to_string(surface.num_faces()) + " " + std::to_string(4 * surface.num_faces()) + "\n";
-  for (int f = 0; f < surface.num_faces(); ++f) {
-    const auto ids = surface.face_vertices(f);
-    s += "3 " + std::to_string(ids[0]) + " " + std::to_string(ids[1]) + " " + std::to_string(ids[2]) + "\n";
-  }
+  s.push_back('\n');
   auto write_scalars = [&s](const std::string& name, const std::vector<double>& values) {
     s += "SCALARS " + VtkName(name) + " double 1\nLOOKUP_TABLE default\n";
-    for (const double x : values) AppendRow(&s, {x});
+    for (const double x : values) AppendBigEndian(&s, x);
+    s.push_back('\n');
   };
   auto write_vectors = [&s](const std::string& name, const std::vector<Eigen::Vector3d>& values) {
     s += "VECTORS " + VtkName(name) + " double\n";
-    for (const auto& x : values) AppendRow(&s, {x.x(), x.y(), x.z()});
+    AppendVectors(&s, values);
   };
   if (!fields.vertex_scalars.empty() || !fields.vertex_vectors.empty()) {
-    s += "POINT_DATA " + std::to_string(surface.num_vertices()) + "\n";
+    s += "POINT_DATA " + std::to_string(nv) + "\n";
     for (const auto& [name, values] : fields.vertex_scalars) write_scalars(name, values);
     for (const auto& [name, values] : fields.vertex_vectors) write_vectors(name, values);
   }
   if (!fields.face_scalars.empty() || !fields.face_vectors.empty()) {
-    s += "CELL_DATA " + std::to_string(surface.num_faces()) + "\n";
+    s += "CELL_DATA " + std::to_string(nf) + "\n";
     for (const auto& [name, values] : fields.face_scalars) write_scalars(name, values);
     for (const auto& [name, values] : fields.face_vectors) write_vectors(name, values);
   }

@@ -1,5 +1,5 @@
 // Per-element fields on the reference surface, written for ParaView (legacy VTK polydata,
-// ASCII, double precision) and as CSV tables.
+// binary, double precision) and as CSV tables.
 #pragma once
 
 #include <string>
@@ -22,6 +22,10 @@ struct SurfaceFields {
 
 // Writes the surface and its fields as a legacy VTK file (opens in ParaView), atomically.
 // origin is added to every point (a georeferenced surface is solved in a local frame).
+// BINARY (the headers are text, the data big-endian doubles and 32-bit ints, as the legacy
+// format defines them): every double exact, ~40 % of the ASCII file's size, and written
+// ~10× faster (at a million triangles the ASCII file was 161 MB and most of the guidance
+// stage's 2.8 s of field writing).
 Status WriteFieldsVtk(const SurfaceModel& surface, const SurfaceFields& fields, const std::string& path,
                       const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 

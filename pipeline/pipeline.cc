@@ -12,6 +12,7 @@
 #include "base/interrupt.h"
 #include "pipeline/build_info.h"
 #include "pipeline/layout_targets.h"
+#include "pipeline/surface_fields.h"
 #include "report/report_html.h"
 #include "pipeline/stages.h"
 #include "problems/boundary_conditions.h"
@@ -169,6 +170,11 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     completed.push_back(entry.name);
     LOG(INFO) << entry.name << ": done in " << metrics["seconds"].get<double>() << " s";
     if (options.progress) options.progress(entry.name, "done", metrics["seconds"].get<double>());
+  }
+  if (config.output.fields && !state.guidance.direction.empty()) {
+    const auto start = std::chrono::steady_clock::now();
+    PQ_RETURN_IF_ERROR(out->InFinalFolder(WriteSurfaceFieldsVtk(state, out.get())));
+    LOG(INFO) << "fields.vtk written in " << SecondsSince(start) << " s";
   }
   (*report)["targets"] = EvaluateLayoutTargets(state, (*report)["stages"]);
   if (!(*report)["targets"]["list"].empty()) LOG(INFO) << "targets: " << LayoutTargetsSummary((*report)["targets"]);

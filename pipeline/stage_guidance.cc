@@ -11,7 +11,6 @@
 #include "geometry/line_field_singularities.h"
 #include "geometry/scalar_field_extrema.h"
 #include "pipeline/stages.h"
-#include "pipeline/surface_fields.h"
 #include "problems/guidance.h"
 #include "report/figures.h"
 
@@ -119,10 +118,7 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
             << " % of faces with weight > 0.5, " << (*metrics)["singularities"]["count"] << " singularities "
             << (*metrics)["singularities"]["by_index"].dump()
             << ", " << (*metrics)["n_sources"] << " sources (minima of the field's magnitude)";
-  if (state->config.output.fields) {
-    PQ_RETURN_IF_ERROR(WriteGuidanceOutputs(surface, state->origin, v_z, g, out));
-    PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
-  }
+  if (state->config.output.fields) PQ_RETURN_IF_ERROR(WriteGuidanceOutputs(surface, state->origin, v_z, g, out));
   const bool strain = options.source == "strain";
   // (The fallback's title drops "(integral curves)": the long one ran off the figure.)
   const std::string title = fallback ? "Guidance: " + options.source + "; curvature lines where weak"

@@ -13,7 +13,6 @@
 #include "problems/levelset.h"
 #include "problems/panel_area.h"
 #include "pipeline/stages.h"
-#include "pipeline/surface_fields.h"
 
 namespace pqlayout {
 
@@ -53,10 +52,8 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   (*metrics)["poles"] = poles;
   if (!solution.rejected_poles.is_null()) (*metrics)["poles_not_kept"] = solution.rejected_poles;
   if (!solution.tip_cone.is_null()) (*metrics)["tip_cone"] = solution.tip_cone;
-  if (state->config.output.fields) {
+  if (state->config.output.fields)
     PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
-    PQ_RETURN_IF_ERROR(WriteSurfaceFieldsVtk(*state, out));
-  }
   const auto& m = solution.metrics;
   LOG(INFO) << "levelset: alignment " << m.alignment_rms_deg << "° RMS (" << m.alignment_rms_deg_strong
             << "° where weight > 0.5), spacing CV φ " << m.spacing_cv_phi << " ψ " << m.spacing_cv_psi

@@ -1,6 +1,7 @@
 // fields.vtk: the reference surface with every per-element result the stages have produced
-// so far (v_z, guidance, strains, weights, φ, ψ), for ParaView. Each stage that adds a field
-// rewrites it, so the file always matches the last completed stage.
+// (v_z, guidance, strains, weights, φ, ψ), for ParaView. Written once, by RunPipeline after
+// its last stage (guidance and levelset each rewrote it before: twice the time at a million
+// triangles), so the file matches the last completed stage.
 #pragma once
 
 #include "pipeline/pipeline.h"
