@@ -149,6 +149,9 @@ inline bool SolveAlongside(const LevelsetOptions& options) {
 // iteration (ThreadCancelled) instead of running to their end before the failure is reported.
 class AlongsideSolve {
  public:
+  // On a thread started by Start: its solves' log lines say so ("levelset: (alongside) phi: …"),
+  // since they interleave with the first layout's, whose names they share where the report's do.
+  static bool OnThisThread() { return on_this_thread_; }
   AlongsideSolve() = default;
   AlongsideSolve(const AlongsideSolve&) = delete;
   AlongsideSolve& operator=(const AlongsideSolve&) = delete;
@@ -158,6 +161,7 @@ class AlongsideSolve {
   }
   void Start(std::function<Status()> solve) {
     thread_ = std::thread([this, solve = std::move(solve)] {
+      on_this_thread_ = true;
       SetThreadCancelFlag(&cancel_);
       try {
         status_ = solve();
@@ -174,6 +178,7 @@ class AlongsideSolve {
   }
 
  private:
+  static inline thread_local bool on_this_thread_ = false;
   std::atomic<bool> cancel_{false};
   std::thread thread_;
   Status status_ = Status::Ok();

@@ -19,9 +19,14 @@ namespace levelset_internal {
 
 // ---- Ceres ---------------------------------------------------------------------------
 
+// A solve's log name: "(alongside) phi" on a second layout's thread (AlongsideSolve).
+std::string LogName(const std::string& name) {
+  return AlongsideSolve::OnThisThread() ? "(alongside) " + name : name;
+}
+
 class ProgressLog : public ceres::IterationCallback {
  public:
-  explicit ProgressLog(std::string name) : name_(std::move(name)) {}
+  explicit ProgressLog(std::string name) : name_(LogName(name)) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
     VLOG(1) << name_ << " iteration " << it.iteration << ": cost " << it.cost;
     if (it.iteration > 0 && it.iteration % 25 == 0)
@@ -116,9 +121,9 @@ Status Solve(const std::string& name, int max_iterations, TermProblem* terms, nl
     AppendNumber(&message, 100.0 * kStallGain, 6);
     (*summary)["message"] = message + " %";
   }
-  VLOG(1) << "levelset: " << name << ":\n" << result.FullReport();
+  VLOG(1) << "levelset: " << LogName(name) << ":\n" << result.FullReport();
   if (!result.IsSolutionUsable()) return Status::Internal("levelset: Ceres failed on " + name + ": " + result.message);
-  LOG(INFO) << "levelset: " << name << ": " << result.iterations.size() - 1 << " iterations, cost "
+  LOG(INFO) << "levelset: " << LogName(name) << ": " << result.iterations.size() - 1 << " iterations, cost "
             << result.initial_cost << " → " << result.final_cost << " ("
             << (stall.fired() ? "STALLED" : ceres::TerminationTypeToString(result.termination_type)) << ", "
             << result.total_time_in_seconds << " s)";

@@ -102,14 +102,18 @@ TEST(Alongside, LeftWithoutJoinTheSolveIsCancelled) {
 
 TEST(Alongside, JoinedTheSolveRunsToItsEnd) {
   std::atomic<int> saw{-1};
+  std::atomic<bool> tagged{false};  // its log lines say "(alongside)"; the first layout's do not
   levelset_internal::AlongsideSolve ahead;
-  ahead.Start([&saw] {
+  ahead.Start([&saw, &tagged] {
+    tagged = levelset_internal::AlongsideSolve::OnThisThread();
     saw = WaitForCancel(50);
     return Status::InvalidInput("its own status");
   });
   const Status status = ahead.Join();
   EXPECT_EQ(saw.load(), 0);
   EXPECT_EQ(status.message(), "its own status");
+  EXPECT_TRUE(tagged.load());
+  EXPECT_FALSE(levelset_internal::AlongsideSolve::OnThisThread());
 }
 
 // r = 10 (x − 3): one Gauss–Newton step to x = 3, unless the thread's work is cancelled.
