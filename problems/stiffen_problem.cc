@@ -151,7 +151,7 @@ std::vector<Vec3> World(const StiffenProblem& P, const std::vector<Vec3>& q) {
   return x;
 }
 
-BoxVariables::BoxVariables(const StiffenProblem& P) : P_(P), index_(P.held.size(), -1) {
+BoxVariables::BoxVariables(const StiffenProblem& P) : P_(P), step_scale_(StepScale(P.h)), index_(P.held.size(), -1) {
   for (size_t v = 0; v < P.held.size(); ++v)
     if (!P.held[v]) index_[v] = static_cast<int>(free_.size()), free_.push_back(static_cast<int>(v));
 }
@@ -159,7 +159,10 @@ BoxVariables::BoxVariables(const StiffenProblem& P) : P_(P), index_(P.held.size(
 std::vector<Vec3> BoxVariables::Local(const double* z) const {
   std::vector<Vec3> q(P_.held.size(), Vec3::Zero());  // held vertices: q = 0 in the identity frame at p
   for (size_t k = 0; k < free_.size(); ++k)
-    for (int c = 0; c < 3; ++c) q[free_[k]][c] = Centre(free_[k], c) + Radius(free_[k], c) * std::sin(z[3 * k + c]);
+    for (int c = 0; c < 3; ++c) {
+      const int v = free_[k];
+      q[v][c] = Centre(v, c) + Radius(v, c) * std::sin(Stretch(v, c) * z[3 * k + c]);
+    }
   return q;
 }
 
@@ -169,14 +172,16 @@ std::vector<double> BoxVariables::Parameters(const std::vector<Vec3>& q) const {
     for (int c = 0; c < 3; ++c) {
       const int v = free_[k];
       const double radius = Radius(v, c);
-      z[3 * k + c] = radius > 0.0 ? std::asin(std::clamp((q[v][c] - Centre(v, c)) / radius, -1.0, 1.0)) : 0.0;
+      z[3 * k + c] =
+          radius > 0.0 ? std::asin(std::clamp((q[v][c] - Centre(v, c)) / radius, -1.0, 1.0)) / Stretch(v, c) : 0.0;
     }
   return z;
 }
 
 Vec3 BoxVariables::Derivative(int k, int c, const double* z) const {
   const int v = free_[k];
-  return P_.frames[v].rotation.col(c) * (Radius(v, c) * std::cos(z[3 * k + c]));
+  const double s = Stretch(v, c);
+  return P_.frames[v].rotation.col(c) * (Radius(v, c) * s * std::cos(s * z[3 * k + c]));
 }
 
 void SetPoints(const std::vector<Vec3>& x, PolyMesh* mesh) {

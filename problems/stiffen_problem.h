@@ -4,6 +4,8 @@
 // their planarised second differences, and the members with their minimum lengths.
 #pragma once
 
+#include <algorithm>
+
 #include <array>
 #include <tuple>
 #include <vector>
@@ -40,8 +42,15 @@ void SetUpStiffenProblem(const ClosestPointQuery& query, const ExtractedMesh& me
 
 std::vector<Eigen::Vector3d> World(const StiffenProblem& P, const std::vector<Eigen::Vector3d>& q);
 
-// The optimiser's variables: per free (not held) vertex three angles z, q = centre + radius ∘ sin z,
+// The optimiser's variables: per free (not held) vertex three angles z, q = centre + radius ∘ sin(s z),
 // so that every z lies in the box (the tolerance holds at every iterate, without bounds).
+// s = min(1, L / radius) with L = StepScale(h) = max(0.1 h, 0.1 m): Ceres' line search takes its
+// first step (and the first after each restart) at |Δz|∞ = 1, i.e. up to radius · sin 1 along
+// the steepest component; with boxes of the scale the stage was tuned at (t = slide = 0.1 m at
+// h = 1–3 m) s = 1 and nothing changes, but a box of metres made that step metres long: the
+// Great Court's compliance ×0.34 at t = 0.5 m, ×0.36 at 2 m, ×0.39 at 5 m and ×1 at 50 m (the
+// step failed the planarity retraction and the run ended at once). With s the first step
+// moves a vertex at most L whatever the box (benchmarks/RESULTS.md, "Stiffen with more room").
 class BoxVariables {
  public:
   explicit BoxVariables(const StiffenProblem& P);
@@ -54,9 +63,12 @@ class BoxVariables {
   Eigen::Vector3d Derivative(int k, int c, const double* z) const;
   double Radius(int v, int c) const { return 0.5 * (P_.upper[v][c] - P_.lower[v][c]); }
   double Centre(int v, int c) const { return 0.5 * (P_.lower[v][c] + P_.upper[v][c]); }
+  double Stretch(int v, int c) const { return std::min(1.0, step_scale_ / Radius(v, c)); }  // s (0 radius: 1)
+  static double StepScale(double spacing) { return std::max(0.1 * spacing, 0.1); }
 
  private:
   const StiffenProblem& P_;
+  double step_scale_;
   std::vector<int> free_, index_;
 };
 void SetPoints(const std::vector<Eigen::Vector3d>& x, PolyMesh* mesh);

@@ -116,6 +116,29 @@ TEST(Stiffen, LittleRoomGainsLittleAndTheReportSaysWhyItStopped) {
   EXPECT_EQ(report.stop.rfind("no room", 0), 0u) << report.stop;
 }
 
+// More room is never softer: a tolerance of metres gains at least what 0.1 m gains. (Ceres'
+// line search takes its first step at |Δz|∞ = 1, which without the stretch of BoxVariables was
+// a step of ~0.84 × the box's radius: on the Great Court ×0.34 at 0.5 m, ×0.39 at 5 m and no
+// gain at all at 50 m. This small grid got by without it — C/C₀ 0.101 at 2 m, 0.103 at 20 m,
+// that run ended by a failed step — so the stretch itself is checked in BoxVariables' test.)
+TEST(Stiffen, MoreRoomIsNeverSofter) {
+  double at_tenth = 0.0;
+  for (const double tolerance : {0.1, 2.0, 20.0}) {
+    ShallowRoof roof(0.02);
+    StiffenOptions options;
+    options.tolerance = tolerance;
+    StiffenReport report;
+    ASSERT_TRUE(StiffenMesh(roof.reference, roof.restraints, AnalysisOptions(), options, 0.05, 1.0, &roof.grid, &report).ok());
+    std::cout << "tolerance " << tolerance << " m: C/C0 " << report.compliance_ratio << ", " << report.iterations
+              << " iterations, stop: " << report.stop << "\n";
+    if (tolerance == 0.1) at_tenth = report.compliance_ratio;
+    EXPECT_LE(report.compliance_ratio, at_tenth * 1.001) << tolerance;
+    EXPECT_LE(report.closeness_max, tolerance);
+    EXPECT_LE(report.planarity_max, 0.05);
+  }
+  EXPECT_LT(at_tenth, 0.5);
+}
+
 // A planar (flat) grid 0.3 m under its reference at the middle, with 0.1 m of room: the
 // vertices farther off than that may come in, never go farther out, and the stage may hand on
 // a reshaped shell only if its panels are as planar as the target and it is stiffer; else the
@@ -279,10 +302,10 @@ TEST(StiffenResiduals, SignedPlanarityIsThePlanarityWithASign) {
 // The planarity manifold on a 4 × 4 grid over a 0.3 m dome, with a tight δ_allowed so that
 // most faces are at their limit.
 struct ManifoldFixture {
-  ManifoldFixture() : roof(0.3), query(roof.reference) {
+  explicit ManifoldFixture(double tolerance = 0.1) : roof(0.3), query(roof.reference) {
     BuildGridFrame(roof.grid.mesh, roof.restraints, AnalysisOptions(), &frame);
     StiffenOptions options;
-    options.tolerance = 0.1;
+    options.tolerance = tolerance;
     SetUpStiffenProblem(query, roof.grid, frame, AnalysisOptions().section, options, 1.0, &P, &q);
   }
   ShallowRoof roof;
@@ -292,11 +315,22 @@ struct ManifoldFixture {
   std::vector<Eigen::Vector3d> q;
 };
 
-// ∂x/∂z (BoxVariables::Derivative) against central differences of x(z) = f + R(centre + radius ∘ sin z).
+// ∂x/∂z (BoxVariables::Derivative) against central differences of x(z) = f + R(centre + radius ∘ sin(s z)),
+// with boxes of the tuned scale (s = 1) and with a 2 m tolerance, whose normal radii are stretched (s < 1).
 TEST(StiffenManifold, BoxVariablesDerivativeMatchesFiniteDifferences) {
-  ManifoldFixture m;
+  for (const double tolerance : {0.1, 2.0}) {
+  ManifoldFixture m(tolerance);
   const BoxVariables box(m.P);
   ASSERT_EQ(box.size(), 27);  // the 3 × 3 interior vertices
+  const int v0 = box.free()[0];
+  EXPECT_EQ(box.Stretch(v0, 0), 1.0);  // the slide: ±0.1 h, the step scale
+  if (tolerance > 1.0) { EXPECT_LT(box.Stretch(v0, 2), 0.1); } else { EXPECT_EQ(box.Stretch(v0, 2), 1.0); }
+  EXPECT_LT((World(m.P, box.Local(box.Parameters(m.q).data()))[v0] - World(m.P, m.q)[v0]).norm(), 1e-12);
+  // A unit step in z (Ceres' first line-search step) moves no vertex farther than the step
+  // scale along any box axis, however large the box (without the stretch: up to 2 m here).
+  const std::vector<double> z0 = box.Parameters(m.q);
+  for (int i = 0; i < box.size(); ++i)
+    EXPECT_LE(box.Derivative(i / 3, i % 3, z0.data()).norm(), BoxVariables::StepScale(1.0) * (1.0 + 1e-12)) << i;
   std::vector<double> z = box.Parameters(m.q);
   for (size_t i = 0; i < z.size(); ++i) z[i] += 0.3 * std::sin(1.7 * i);
   for (int i = 0; i < box.size(); ++i) {
@@ -305,6 +339,7 @@ TEST(StiffenManifold, BoxVariablesDerivativeMatchesFiniteDifferences) {
     const int v = box.free()[i / 3];
     const Eigen::Vector3d fd = (World(m.P, box.Local(plus.data()))[v] - World(m.P, box.Local(minus.data()))[v]) / 2e-6;
     EXPECT_LT((fd - box.Derivative(i / 3, i % 3, z.data())).norm(), 1e-8) << i;
+  }
   }
 }
 
