@@ -263,7 +263,8 @@ KeyTable::KeyTable(Config* c) {
           "local re-solves after it that raise transversality on the faces still crossing below levelset.min_angle, "
           "at most (0: none; they also end after 3 rounds in a row that do not reach the best state); if they "
           "leave a fold-over or a face below min_angle, as many floor rounds (a barrier under the "
-          "worst face) and again crossing rounds over that floor, and the better end is kept");
+          "worst face) and again crossing rounds over that floor, and the better end is kept; none where more "
+          "than half the area crosses below min_angle after the joint solve (out of reach: a warning says so)");
   Bool("levelset.seams", &c->levelset.seams,
        "cut seams from the guidance's ±½ singularities and from holes to the boundary; φ, ψ jump by whole levels "
        "across them (branch points, as in the paper's curvature reference); false: single-valued φ, ψ");

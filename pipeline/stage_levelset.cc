@@ -67,6 +67,9 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
     what << m.faces_below_min_angle << " faces (" << 100.0 * m.area_below_min_angle << " % of the area) cross below "
          << "levelset.min_angle " << state->config.levelset.min_angle << "° (the smallest at "
          << m.min_crossing_angle_deg << "°): the quads there are sheared";
+    if (CrossingOutOfReach(m))
+      what << "; so much that the crossing rounds and the cone's retry were not run (they re-solve round the "
+           << "failing faces): a smaller levelset.min_angle, or guidance whose conjugate directions cross wider";
     if (m.foldovers > 0) what << "; " << m.foldovers << " faces fold over: the quads there are inverted";
     LOG(WARNING) << "levelset: " << what.str();
   }

@@ -216,7 +216,7 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
   const LevelSetMetrics without = solution->metrics;
   const double min_angle = state.plain.min_angle;
   if (!MayRetryWithCone(state.cone, state.problem->NumTips()) ||
-      (without.foldovers == 0 && without.faces_below_min_angle == 0))
+      (without.foldovers == 0 && without.faces_below_min_angle == 0) || CrossingOutOfReach(without))
     return Status::Ok();
   LOG(INFO) << "levelset: " << without.faces_below_min_angle << " faces cross below " << min_angle << "° (the worst at "
             << without.min_crossing_angle_deg << "°, " << without.foldovers << " fold-overs); "

@@ -226,6 +226,11 @@ Status LevelSetProblem::Rounds() {
   if (options_.crossing_rounds <= 0) return Status::Ok();
   const LevelSetMetrics joint = Measure();
   if (joint.faces_below_min_angle == 0 && joint.foldovers == 0) return Status::Ok();
+  if (CrossingOutOfReach(joint)) {
+    LOG(INFO) << "levelset: " << 100.0 * joint.area_below_min_angle << " % of the area crosses below "
+              << options_.min_angle << "° after the joint solve: out of the local rounds' reach, none run";
+    return Status::Ok();
+  }
   const std::vector<double> joint_phi = phi_, joint_psi = psi_;
   PQ_RETURN_IF_ERROR(CrossingRounds());
   solution_->crossing_rounds_kept = "boost";
