@@ -68,8 +68,9 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
          << "levelset.min_angle " << state->config.levelset.min_angle << "° (the smallest at "
          << m.min_crossing_angle_deg << "°): the quads there are sheared";
     if (CrossingOutOfReach(m))
-      what << "; so much that the crossing rounds and the cone's retry were not run (they re-solve round the "
-           << "failing faces): a smaller levelset.min_angle, or guidance whose conjugate directions cross wider";
+      what << "; more than half the area, beyond what the crossing rounds and the cone's retry can lift (they "
+           << "re-solve round the failing faces, and past half the area after the joint solve are not run): a "
+           << "smaller levelset.min_angle, or guidance whose conjugate directions cross wider";
     if (m.foldovers > 0) what << "; " << m.foldovers << " faces fold over: the quads there are inverted";
     LOG(WARNING) << "levelset: " << what.str();
   }
