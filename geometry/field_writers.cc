@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <initializer_list>
 #include <string>
 
 #include "base/atomic_file.h"
@@ -12,28 +11,13 @@
 namespace pqlayout {
 namespace {
 
-constexpr int kDigits = 12;
-
-// " x" for each value, then "\n" (the first without its space).
-void AppendRow(std::string* s, std::initializer_list<double> values) {
-  bool first = true;
-  for (const double x : values) {
-    if (!first) s->push_back(' ');
-    AppendNumber(s, x, kDigits);
-    first = false;
-  }
-  s->push_back('\n');
-}
+constexpr int kDigits = 12;  // the CSV tables' significant digits
 
 std::string VtkName(std::string name) {
   for (char& c : name)
     if (c == ' ') c = '_';
   return name;
 }
-
-}  // namespace
-
-namespace {
 
 // Legacy VTK's binary data: big-endian, doubles and 32-bit ints.
 template <typename T>
