@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "geometry/closest_point.h"
 #include "geometry/polygon_shape.h"
@@ -267,6 +268,39 @@ struct RoundWeights {
   double planarity, closeness, boundary;
 };
 
+// How each Levenberg–Marquardt step is solved. From kSchurFromFaces faces with a plane on,
+// the planes are eliminated (Schur complement: no residual couples two planes,
+// problems/residuals/planarity_residual.h) and the reduced system over the vertices is solved
+// by conjugate gradients preconditioned by its block diagonal (Ceres' ITERATIVE_SCHUR +
+// SCHUR_JACOBI), in every round: on the surface, where vertices slide metres, with the steps
+// kept near exact (forcing η = kSurfaceForcing: CG stops once an iteration improves the
+// quadratic model by less than η / i of it), off it with Ceres' default η = 0.1. Smaller
+// meshes keep exact steps on the surface (a sparse Cholesky factor of the normal equations
+// over planes and vertices) and CGNR (Jacobi) off it: there the factor costs no more a step
+// than the conjugate gradients (560–716 faces: ×0.85–0.95 of their time a step) and exact steps
+// are the safer slide; from ~2,000 faces it is most of the stage. Measured (issue 19;
+// benchmarks/RESULTS.md, "Planarisation's steps over the vertices only"): the lifted 1 m grid
+// (5,328 quads) 3.2–3.5 → 2.3–2.6 s, the Great Court at h = 1.65 m 1.3–1.4 → 0.7–0.8 s; with
+// the reduced system at every size the corpus and the stiffness ensemble met the same targets
+// and were as stiff (geometric mean × 0.999); at η = 1e-3 one corpus panel folded.
+constexpr int kSchurFromFaces = 1000;
+constexpr double kSurfaceForcing = 0.01;
+
+void SetStepSolver(PlanarizeData* d, bool on_surface, ceres::Solver::Options* options) {
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (size_t f = 0; f < d->faces.size(); ++f)
+    if (d->faces[f].size() >= 4) ordering->AddElementToGroup(d->planes[f].data(), 0);
+  if (ordering->NumElements() < kSchurFromFaces) {
+    if (!on_surface) options->linear_solver_type = ceres::CGNR, options->preconditioner_type = ceres::JACOBI;
+    return;
+  }
+  for (size_t v = 0; v < d->start.size(); ++v) ordering->AddElementToGroup(&d->position[3 * v], 1);
+  options->linear_solver_ordering = ordering;
+  options->linear_solver_type = ceres::ITERATIVE_SCHUR;
+  options->preconditioner_type = ceres::SCHUR_JACOBI;
+  if (on_surface) options->eta = kSurfaceForcing;
+}
+
 // One round: at most kIterationsPerRound Ceres iterations from d->position (updated in place).
 // on_surface: vertices move on the reference (SurfaceManifold); otherwise in space with
 // closeness and boundary residuals.
@@ -315,20 +349,7 @@ void SolveRound(const ExtractedMesh& extracted, const ClosestPointQuery& query, 
       problem.AddResidualBlock(FairnessResidual::Create(fairness_weight, h), nullptr, &position[3 * t[0]],
                                &position[3 * t[1]], &position[3 * t[2]]);
   ceres::Solver::Options solver_options = SparseCholeskyOptions(kIterationsPerRound);
-  // Off the surface (3 unknowns per vertex, fairness coupling vertices two apart) each step
-  // is solved by conjugate gradients on the normal equations (Jacobi preconditioner, Ceres'
-  // forcing η = 0.1), not by a sparse Cholesky factor: the factor was 70 % of the stage at
-  // 5,328 quads (123 ms an iteration against 44 ms on the surface, with 2 unknowns per
-  // vertex). On the surface the factor stays: that is where vertices slide metres, and
-  // inexact steps there land elsewhere (CG in every round: a Great Court boundary vertex slid
-  // 8.9 m instead of 3.0 and the curvature layout's compliance rose 17 %; lifted 1 m grid
-  // closeness 5.5–29 mm depending on η). Measured with planarize_benchmark (issue 19): lifted
-  // 1 m grid 5.9 s → 2.6 s, closeness 9.4 → 6.6 mm; Great Court at h = 3 m byte-for-byte
-  // different but within 1 % in compliance after stiffen (README, benchmarks/RESULTS.md).
-  if (!on_surface) {
-    solver_options.linear_solver_type = ceres::CGNR;
-    solver_options.preconditioner_type = ceres::JACOBI;
-  }
+  SetStepSolver(d, on_surface, &solver_options);
   GoalReached goal(*d, query, kEarlyDelta * options.target_delta, kEarlyCloseness * h, w.orientation > 0.0);
   solver_options.callbacks.push_back(&goal);
   solver_options.update_state_every_iteration = true;
@@ -372,6 +393,7 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
     report->ceres.push_back({{"round", report->rounds}, {"on_surface", on_surface}, {"planarity_weight", rw.planarity},
                              {"closeness_weight", on_surface ? 0.0 : rw.closeness},
                              {"iterations", summary.iterations.size() - 1}, {"initial_cost", summary.initial_cost},
+                             {"linear_solver", ceres::LinearSolverTypeToString(summary.linear_solver_type_used)},
                              {"final_cost", summary.final_cost}, {"planarity_max", report->planarity_max},
                              {"closeness_max", report->closeness_max}, {"seconds", summary.total_time_in_seconds}});
     LOG(INFO) << "planarize: round " << report->rounds << (on_surface ? " (on the surface)" : " (closeness penalty)")

@@ -257,6 +257,40 @@ TEST(Planarize, TrianglesCutFromAFoldedPanelAreOpenedWhenEveryQuadIsPlanar) {
   EXPECT_EQ(after.folded_faces, 0);
 }
 
+// A mesh of triangles only has no plane for the steps' Schur complement to eliminate
+// (SetStepSolver keeps the sparse factor then): a triangle turned inside out is still opened,
+// on the reference.
+TEST(Planarize, AMeshWithoutQuadsStillOpensItsInsideOutTriangle) {
+  auto flat = [](double, double) { return 0.0; };
+  const SurfaceModel reference(testing::ToMesh(testing::GridSoup(3, flat)));
+  const ExtractedMesh grid = QuadGrid(3, 3, 1.0, flat);
+  ExtractedMesh triangles;
+  triangles.origin = grid.origin;
+  std::vector<Eigen::Vector3d> start;
+  for (const auto v : grid.mesh.vertices()) {
+    triangles.mesh.add_vertex(grid.mesh.point(v));
+    start.push_back(ToEigen(grid.mesh.point(v)));
+  }
+  for (const auto f : grid.mesh.faces()) {
+    std::vector<VertexHandle> q;
+    for (const auto v : grid.mesh.fv_range(f)) q.push_back(v);
+    triangles.mesh.add_face({q[0], q[1], q[2]});
+    triangles.mesh.add_face({q[0], q[2], q[3]});
+  }
+  triangles.mesh.set_point(VertexHandle(5), {2.4, 2.4, 0.0});  // past its ring: triangles fold over
+  PlanarizeReport before;
+  MeasurePanelShapes(triangles.mesh, start, 1.0, 0.2, &before);
+  ASSERT_GE(before.folded_faces, 1);
+  PlanarizeReport report;
+  ASSERT_TRUE(PlanarizeMesh(reference, PlanarizeOptions(), 1.0, &triangles, &report, &start).ok());
+  EXPECT_GE(report.rounds, 1);  // there was work, with no plane in the problem
+  EXPECT_EQ(report.planarity_max, 0.0);
+  EXPECT_LE(report.closeness_max, 1e-9);
+  PlanarizeReport after;
+  MeasurePanelShapes(triangles.mesh, start, 1.0, 0.2, &after);
+  EXPECT_EQ(after.folded_faces, 0);
+}
+
 TEST(Planarize, NoisyPlanarGridReturnsToItsPlane) {
   auto flat = [](double, double) { return 0.0; };
   const SurfaceModel reference(testing::ToMesh(testing::GridSoup(6, flat)));
@@ -323,6 +357,50 @@ TEST(Planarize, QuadStripOnACylinderBecomesPlanarAndStaysOnIt) {
   EXPECT_GE(report.rounds, 1);  // it really had work to do
   std::cout << "cylinder strip: δ max " << report.planarity_max << ", closeness max " << report.closeness_max
             << " m after " << report.rounds << " rounds\n";
+}
+
+// From 1,000 faces on, each step is solved over the vertices only (the planes eliminated,
+// conjugate gradients: SetStepSolver). 24 × 60 quads of 0.25 m on the cylinder (as above,
+// jittered off the rulings) still end planar, on the reference and on the cylinder; a 6 × 6
+// strip keeps the sparse factor on the surface.
+TEST(Planarize, ALargeStripIsSolvedOverItsVerticesAndEndsPlanarOnTheCylinder) {
+  const double R = 8.0, h = 0.25;
+  auto height = [R](double x, double) { return std::sqrt(R * R - (x - 3.0) * (x - 3.0)); };
+  PolygonSoup soup = testing::GridSoup(60, [](double, double) { return 0.0; });
+  for (auto& p : soup.points) {  // 6 m across the rulings (0.1 m chords: 1.6e-4 m off), 15 m along
+    p.x() *= 0.1;
+    p.y() *= 0.25;
+    p.z() = height(p.x(), p.y());
+  }
+  const SurfaceModel cylinder(testing::ToMesh(soup));
+  ExtractedMesh strip = QuadGrid(24, 60, h, height);
+  std::mt19937 jitter(5);
+  for (const auto v : strip.mesh.vertices()) {
+    if (strip.origin[v.idx()].on_boundary) continue;
+    auto p = strip.mesh.point(v);
+    p[0] += std::uniform_real_distribution<double>(-0.15 * h, 0.15 * h)(jitter);
+    p[2] = height(p[0], p[1]);
+    strip.mesh.set_point(v, p);
+  }
+  PlanarizeReport report;
+  ASSERT_TRUE(PlanarizeMesh(cylinder, PlanarizeOptions(), h, &strip, &report).ok());
+  ASSERT_GE(report.ceres.size(), 1u);
+  for (const auto& round : report.ceres) EXPECT_EQ(round["linear_solver"], "ITERATIVE_SCHUR");
+  EXPECT_LE(report.planarity_max, 1e-3);
+  EXPECT_LE(report.closeness_max, 1e-3 * h);
+  double off = 0.0;
+  for (const auto v : strip.mesh.vertices()) {
+    const auto p = strip.mesh.point(v);
+    off = std::max(off, std::abs(std::hypot(p[0] - 3.0, p[2]) - R));
+  }
+  EXPECT_LE(off, 1.6e-4 + 1e-3 * h);
+  auto [small_cylinder, small] = JitteredCylinderStrip(Eigen::Vector3d::Zero(), 7);
+  PlanarizeReport small_report;
+  ASSERT_TRUE(PlanarizeMesh(small_cylinder, PlanarizeOptions(), 1.0, &small, &small_report).ok());
+  ASSERT_GE(small_report.ceres.size(), 1u);
+  EXPECT_EQ(small_report.ceres[0]["linear_solver"], "SPARSE_NORMAL_CHOLESKY");
+  std::cout << "1,440 quads: δ max " << report.planarity_max << ", closeness max " << report.closeness_max << " m, "
+            << off << " m off the cylinder after " << report.rounds << " rounds\n";
 }
 
 // Planarisation does not depend on where the roof lies: the same strip 5 km from the origin

@@ -13,8 +13,8 @@
 // Gauss–Newton converges in few iterations even for n-gons (Liu et al. 2006 use the same
 // auxiliary-plane idea), where the diagonal-distance form is a ratio of cross products with
 // a badly scaled Jacobian near planarity; and no residual couples two planes, so the planes
-// are an independent set that Ceres' Schur complement eliminates (SPARSE_SCHUR: the reduced
-// system is over the vertices only).
+// are an independent set that Ceres' Schur complement eliminates (problems/planarize.cc,
+// SetStepSolver: each step is solved over the vertices only).
 // Parameters: plane = (n_f, d_f) (4), p_v (3); c_f is a constant.
 #pragma once
 
