@@ -224,6 +224,12 @@ std::string KeyTable::Suggest(const std::string& key) const {
   return best.empty() ? "" : " (did you mean '" + best + "'?)";
 }
 
+}  // namespace config_internal
+
+namespace {
+
+using namespace config_internal;
+
 // Walks a YAML mapping, setting every leaf it finds; records the keys it set.
 Status ApplyMapping(const YAML::Node& node, const std::string& prefix, const std::string& source,
                     KeyTable* table, std::set<std::string>* set_keys) {
@@ -252,12 +258,6 @@ Status ApplyMapping(const YAML::Node& node, const std::string& prefix, const std
   }
   return Status::Ok();
 }
-
-}  // namespace config_internal
-
-namespace {
-
-using namespace config_internal;
 
 Status ApplyOverride(const std::string& assignment, KeyTable* table, std::string* key_out) {
   const std::string where = "--set " + assignment;
