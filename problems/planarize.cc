@@ -291,7 +291,10 @@ void SetStepSolver(PlanarizeData* d, bool on_surface, ceres::Solver::Options* op
   for (size_t f = 0; f < d->faces.size(); ++f)
     if (d->faces[f].size() >= 4) ordering->AddElementToGroup(d->planes[f].data(), 0);
   if (ordering->NumElements() < kSchurFromFaces) {
-    if (!on_surface) options->linear_solver_type = ceres::CGNR, options->preconditioner_type = ceres::JACOBI;
+    if (!on_surface) {
+      options->linear_solver_type = ceres::CGNR;
+      options->preconditioner_type = ceres::JACOBI;
+    }
     return;
   }
   for (size_t v = 0; v < d->start.size(); ++v) ordering->AddElementToGroup(&d->position[3 * v], 1);
