@@ -5,13 +5,12 @@
 //   ∂r/∂p = √w (I − t tᵀ) / h   where c lies inside a boundary edge of tangent t,
 //           √w I / h            where c is a polyline vertex.
 // So the vertex may slide along the boundary, across any number of boundary edges.
-// Like ClosenessResidual, it hands its last boundary edge to the query as a hint.
+// Like ClosenessResidual, it remembers its last answer (RememberedClosestPoint).
 // Parameters: p_v (3).
 #pragma once
 
 #include <ceres/ceres.h>
 
-#include <atomic>
 #include <cmath>
 
 #include "geometry/closest_point.h"
@@ -26,8 +25,7 @@ class BoundaryResidual final : public ceres::SizedCostFunction<3, 3> {
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const Eigen::Vector3d p(parameters[0][0], parameters[0][1], parameters[0][2]);
-    const SurfacePoint c = query_->OnBoundary(p, hint_.load(std::memory_order_relaxed));
-    hint_.store(c.element, std::memory_order_relaxed);
+    const SurfacePoint& c = last_.OnBoundary(*query_, p);
     for (int k = 0; k < 3; ++k) residuals[k] = scale_ * (p[k] - c.point[k]);
     if (jacobians != nullptr && jacobians[0] != nullptr) {
       Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> jacobian(jacobians[0]);
@@ -40,7 +38,7 @@ class BoundaryResidual final : public ceres::SizedCostFunction<3, 3> {
  private:
   const ClosestPointQuery* query_;
   const double scale_;
-  mutable std::atomic<int> hint_{-1};
+  RememberedClosestPoint last_;
 };
 
 }  // namespace pqlayout

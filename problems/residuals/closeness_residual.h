@@ -7,15 +7,14 @@
 // number of reference triangles within one solve and the solver still sees the surface, not
 // a tangent plane that is only right near where the solve started. Only the distance is
 // penalised: sliding along the surface is free here (the anchor term keeps it small).
-// The residual remembers the triangle of its last answer and hands it to the query as a
-// hint (exact either way; the search is just shorter): Ceres evaluates one residual block
-// from one thread at a time, the atomic only keeps that free of formal data races.
+// The residual remembers its last answer (RememberedClosestPoint): the same position again
+// (the Jacobian at a step just taken) is answered from memory, a new one searched with the
+// last triangle as hint (exact either way; the search is just shorter).
 // Parameters: p_v (3).
 #pragma once
 
 #include <ceres/ceres.h>
 
-#include <atomic>
 #include <cmath>
 
 #include "geometry/closest_point.h"
@@ -30,8 +29,7 @@ class ClosenessResidual final : public ceres::SizedCostFunction<1, 3> {
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const Eigen::Vector3d p(parameters[0][0], parameters[0][1], parameters[0][2]);
-    const SurfacePoint c = query_->OnSurface(p, hint_.load(std::memory_order_relaxed));
-    hint_.store(c.element, std::memory_order_relaxed);
+    const SurfacePoint& c = last_.OnSurface(*query_, p);
     const Eigen::Vector3d offset = p - c.point;
     const double sign = offset.dot(c.normal) < 0.0 ? -1.0 : 1.0;
     const double distance = offset.norm();
@@ -46,7 +44,7 @@ class ClosenessResidual final : public ceres::SizedCostFunction<1, 3> {
  private:
   const ClosestPointQuery* query_;
   const double scale_;
-  mutable std::atomic<int> hint_{-1};
+  RememberedClosestPoint last_;
 };
 
 }  // namespace pqlayout
