@@ -198,6 +198,37 @@ TEST(ClosestPointQuery, HintedSearchGivesTheSameClosestPoint) {
   }
 }
 
+// RememberedClosestPoint (planarisation's closeness and boundary residuals): every answer,
+// from memory or searched with the last one as hint, is the query's own to the bit — also
+// back at a point asked two questions ago (a memory keyed on anything but the exact position
+// would answer that with the point in between), and for points that moved by one ulp.
+TEST(ClosestPoints, RememberedAnswersAreTheQuerysOwn) {
+  const SurfaceModel s(testing::ToMesh(testing::GridSoup(6, [](double x, double y) { return std::sin(x) * std::cos(0.7 * y); })));
+  const ClosestPointQuery& query = s.closest_points();
+  const auto expect_same = [](const SurfacePoint& a, const SurfacePoint& b) {
+    EXPECT_EQ(a.element, b.element);
+    EXPECT_EQ(a.point, b.point);
+    EXPECT_EQ(a.normal, b.normal);
+    EXPECT_EQ(a.tangent, b.tangent);
+    EXPECT_EQ(a.inside_edge, b.inside_edge);
+    EXPECT_EQ(a.distance, b.distance);
+  };
+  const Eigen::Vector3d p1(2.3, 1.7, 0.4), p2(2.35, 1.7, 0.4), p3(5.1, 0.2, -0.8);
+  const Eigen::Vector3d p1_next(std::nextafter(p1.x(), 3.0), p1.y(), p1.z());
+  RememberedClosestPoint on_surface, on_boundary;
+  int surface_elements = 0;
+  for (const Eigen::Vector3d& p : {p1, p1, p2, p1, p1_next, p3, p3, p1}) {
+    const SurfacePoint fresh = query.OnSurface(p);
+    expect_same(on_surface.OnSurface(query, p), fresh);
+    expect_same(on_boundary.OnBoundary(query, p), query.OnBoundary(p));
+    surface_elements += fresh.element >= 0;
+  }
+  EXPECT_EQ(surface_elements, 8);
+  // The points are not all answered alike: the test would not see a memory that ignored p.
+  EXPECT_NE(query.OnSurface(p1).element, query.OnSurface(p3).element);
+  EXPECT_NE(query.OnSurface(p1).point, query.OnSurface(p2).point);
+}
+
 // The manifold remembers the triangles of its last two points. A step from the same state
 // after a rejected candidate is what a fresh manifold computes, and the chart at an accepted
 // candidate is the plane of a triangle the candidate lies on: a tangent step of 1e-7 into that
