@@ -12,6 +12,7 @@
 #include <initializer_list>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -96,27 +97,33 @@ Status InitialGuess(const SurfaceModel& s, const LevelSetGeometry& geo, const st
 // (levelset.linear_solver = cg) Solve's preconditioner leaves them out.
 // The step solver is fixed at construction, so no solve can forget it; the smoothness blocks
 // are recorded only when cg_steps reads them.
+// The terms' weights are ScaledLoss objects, one per distinct weight shared by every block
+// that has it (Weight): a problem holds ~90k blocks and a handful of weights. The problem owns
+// them (Ceres counts the blocks that share one and deletes it with the last).
 struct TermProblem {
   explicit TermProblem(bool cg) : cg_steps(cg) {}
   void AddSmoothnessBlock(ceres::ResidualBlockId id) {
     if (cg_steps) smoothness.insert(id);
   }
+  ceres::LossFunction* Weight(double w);
   ceres::Problem problem;
   std::unordered_set<ceres::ResidualBlockId> smoothness;  // empty unless cg_steps
   const bool cg_steps;
+
+ private:
+  std::unordered_map<double, ceres::LossFunction*> weights_;  // owned by problem
 };
 // One Ceres solve of at most max_iterations, logged under name; stop_on_stall: also end once
 // past iteration 100 the cost fell by less than 0.5 % over the last 24 (levelset_terms.cc, StallStop).
 Status Solve(const std::string& name, int max_iterations, TermProblem* terms, nlohmann::json* summary,
              bool stop_on_stall = false);
-ceres::LossFunction* Weight(double w);
 bool Live(const std::vector<char>* live, std::initializer_list<int> ids);
 ceres::ResidualBlockId AddMapped(ceres::Problem* problem, ceres::CostFunction* cost, ceres::LossFunction* loss,
                                  std::initializer_list<std::pair<const Chart*, Scalar>> args);
 void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weight, const Chart& u, TermProblem* terms, const std::vector<char>* live = nullptr);
 // The spacing term; target: ρ_f per face (ConeSpacingTargets), empty for 1 everywhere.
 void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u,
-                const std::vector<double>& target, ceres::Problem* problem, const std::vector<char>* live = nullptr);
+                const std::vector<double>& target, TermProblem* terms, const std::vector<char>* live = nullptr);
 // What the spacing term asks of h|∇u| on each face (levelset.tip_cone_radius = R): round a branch
 // point u ~ Re z^{3/2}, so |∇u| ~ d^½ at distance d, and ρ_f = min(1, (d_f / (R h))^½) with d_f
 // from the face's centroid to the nearest tip; empty (1 everywhere) without tips or with R = 0.

@@ -79,7 +79,7 @@ void LevelSetProblem::AddSeamSmoothness(TermProblem* terms, const Chart& u, cons
     Scalar l = u.At(t.l);
     l = {l.vertex, sign * l.scale, sign * (l.offset - offsets[t.path])};
     terms->AddSmoothnessBlock(AddMapped(&terms->problem, SmoothnessResidual::Create(t.Gf, t.Gg, t.area, t.distance, h_),
-                                       Weight(w_.smoothness),
+                                       terms->Weight(w_.smoothness),
                                        {{&u, u.At(t.i_minus)}, {&u, u.At(t.j_minus)}, {&u, u.At(t.k)}, {&u, l}}));
   }
 }
@@ -92,11 +92,11 @@ void LevelSetProblem::AddPhiTerms(TermProblem* terms, const std::vector<char>* l
     if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
     if (w_.alignment > 0.0 && g_.weight[f] > 0.0)
       AddMapped(problem, AlignmentResidual::Create(geo_.G[f], g_.direction[f], g_.weight[f], s_.face_area(f), h_),
-                Weight(w_.alignment),
+                terms->Weight(w_.alignment),
                 {{&phi_chart_, phi_chart_.At(ids[0])}, {&phi_chart_, phi_chart_.At(ids[1])},
                  {&phi_chart_, phi_chart_.At(ids[2])}});
   }
-  AddSpacing(s_, geo_, h_, w_.spacing, phi_chart_, spacing_target_, problem, live);
+  AddSpacing(s_, geo_, h_, w_.spacing, phi_chart_, spacing_target_, terms, live);
   AddSmoothness(edges_, h_, w_.smoothness, phi_chart_, terms, live);
   if (seams_ != nullptr) AddSeamSmoothness(terms, phi_chart_, seams_->phi_offset, live);
 }
@@ -114,15 +114,15 @@ void LevelSetProblem::AddPsiTerms(TermProblem* terms, const std::vector<char>* l
     const Eigen::Vector3d& n = s_.face_normal(f);
     if (w_.conjugacy > 0.0)
       AddMapped(problem, ConjugacyResidual::Create(geo_.G[f], n, geo_.S[f], geo_.flat_curvature, s_.face_area(f)),
-                Weight(w_.conjugacy), blocks);
+                terms->Weight(w_.conjugacy), blocks);
     if (w_.transversality > 0.0)
       AddMapped(problem, TransversalityResidual::Create(geo_.G[f], n, hinge_angle_, s_.face_area(f), h_),
-                Weight(w_.transversality * boost_[f]), blocks);
+                terms->Weight(w_.transversality * boost_[f]), blocks);
     if (barrier_floor_ != kNoFloor)
       AddMapped(problem, CrossingBarrierResidual::Create(geo_.G[f], n, min_angle_, barrier_floor_, s_.face_area(f), h_),
-                Weight(w_.transversality), blocks);
+                terms->Weight(w_.transversality), blocks);
   }
-  AddSpacing(s_, geo_, h_, w_.spacing, psi_chart_, spacing_target_, problem, live);
+  AddSpacing(s_, geo_, h_, w_.spacing, psi_chart_, spacing_target_, terms, live);
   AddSmoothness(edges_, h_, w_.smoothness, psi_chart_, terms, live);
   if (seams_ != nullptr) AddSeamSmoothness(terms, psi_chart_, seams_->psi_offset, live);
 }

@@ -130,7 +130,11 @@ Status Solve(const std::string& name, int max_iterations, TermProblem* terms, nl
   return Status::Ok();
 }
 
-ceres::LossFunction* Weight(double w) { return new ceres::ScaledLoss(nullptr, w, ceres::TAKE_OWNERSHIP); }
+ceres::LossFunction* TermProblem::Weight(double w) {
+  auto [it, added] = weights_.try_emplace(w, nullptr);
+  if (added) it->second = new ceres::ScaledLoss(nullptr, w, ceres::TAKE_OWNERSHIP);
+  return it->second;
+}
 
 // `live`: vertex mask; a term is added if it touches a live vertex (nullptr: all).
 bool Live(const std::vector<char>* live, std::initializer_list<int> ids) {
@@ -162,19 +166,19 @@ void AddSmoothness(const std::vector<InteriorEdge>& edges, double h, double weig
   for (const auto& e : edges) {
     if (!Live(live, {e.i, e.j, e.k, e.l})) continue;
     terms->AddSmoothnessBlock(AddMapped(&terms->problem, SmoothnessResidual::Create(e.Gf, e.Gg, e.area, e.distance, h),
-                                       Weight(weight), {{&u, u.At(e.i)}, {&u, u.At(e.j)}, {&u, u.At(e.k)}, {&u, u.At(e.l)}}));
+                                       terms->Weight(weight), {{&u, u.At(e.i)}, {&u, u.At(e.j)}, {&u, u.At(e.k)}, {&u, u.At(e.l)}}));
   }
 }
 
 // A face with target ρ asks for the local spacing h / ρ, weighted ρ², i.e. r_f = √(wA_f) (h|∇u_f| − ρ).
 void AddSpacing(const SurfaceModel& s, const LevelSetGeometry& geo, double h, double weight, const Chart& u,
-                const std::vector<double>& target, ceres::Problem* problem, const std::vector<char>* live) {
+                const std::vector<double>& target, TermProblem* terms, const std::vector<char>* live) {
   if (weight <= 0.0) return;
   for (int f = 0; f < s.num_faces(); ++f) {
     const auto ids = s.face_vertices(f);
     if (!Live(live, {ids[0], ids[1], ids[2]})) continue;
     const double rho = target.empty() ? 1.0 : target[f];
-    AddMapped(problem, SpacingResidual::Create(geo.G[f], s.face_area(f), h / rho), Weight(weight * rho * rho),
+    AddMapped(&terms->problem, SpacingResidual::Create(geo.G[f], s.face_area(f), h / rho), terms->Weight(weight * rho * rho),
               {{&u, u.At(ids[0])}, {&u, u.At(ids[1])}, {&u, u.At(ids[2])}});
   }
 }

@@ -44,7 +44,7 @@ TEST(LevelSets, SolveLeavesTheSmoothnessToConjugateGradientsAndFindsTheMinimum) 
     phi[v] = s.position(v).x() / h + 0.1 * std::sin(s.position(v).x()) * std::cos(0.7 * s.position(v).y());
   const levelset_internal::Chart chart{&phi, {}};
   levelset_internal::TermProblem terms(true);  // levelset.linear_solver = cg
-  levelset_internal::AddSpacing(s, geo, h, 5.0, chart, {}, &terms.problem);
+  levelset_internal::AddSpacing(s, geo, h, 5.0, chart, {}, &terms);
   levelset_internal::AddSmoothness(edges, h, 0.01, chart, &terms);
   EXPECT_EQ(terms.smoothness.size(), edges.size());
   {  // with cholesky the same blocks, none recorded (nothing reads them)

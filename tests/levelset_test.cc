@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "geometry/differential_operators.h"
@@ -91,13 +92,26 @@ TEST(LevelSets, SpacingFollowsTheConeRoundABranchPoint) {
   for (int v = 0; v < s.num_vertices(); ++v) phi[v] = s.position(v).x() / h;
   const levelset_internal::Chart chart{&phi, {}};
   const double w = 5.0;
-  ceres::Problem problem;
-  levelset_internal::AddSpacing(s, geo, h, w, chart, rho, &problem);
+  levelset_internal::TermProblem terms(false);
+  levelset_internal::AddSpacing(s, geo, h, w, chart, rho, &terms);
   double cost = 0.0, expected = 0.0;
-  ASSERT_TRUE(problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr));
+  ASSERT_TRUE(terms.problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr));
   for (int f = 0; f < s.num_faces(); ++f) expected += 0.5 * w * s.face_area(f) * (1.0 - rho[f]) * (1.0 - rho[f]);
   EXPECT_GT(expected, 0.01);
   EXPECT_NEAR(cost, expected, 1e-9 * expected);
+  // One weight object per distinct weight w ρ², shared by the blocks that have it.
+  std::vector<ceres::ResidualBlockId> blocks;
+  terms.problem.GetResidualBlocks(&blocks);
+  ASSERT_EQ(static_cast<int>(blocks.size()), s.num_faces());
+  std::set<const ceres::LossFunction*> losses;
+  std::set<double> weights;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    losses.insert(terms.problem.GetLossFunctionForResidualBlock(blocks[f]));
+    weights.insert(w * rho[f] * rho[f]);
+  }
+  EXPECT_GT(weights.size(), 2u);
+  EXPECT_LT(weights.size(), blocks.size());
+  EXPECT_EQ(losses.size(), weights.size());
 }
 
 // levelset.smoothness_max_guidance: the smoothness term acts on the edges with a face of
