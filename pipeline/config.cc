@@ -102,10 +102,15 @@ KeyTable::KeyTable(Config* c) {
          "the layout with poles where the guidance has crowns) on a second thread beside the first from the start "
          "(the same outputs; on 2 cores the level sets ~0.7× as long where they are needed, up to 2× where their work "
          "is thrown away); false: one thread, each only once needed; auto: true with at least 4 hardware threads");
-  Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000, "Ceres iterations of the φ solve and of the ψ solve");
+  Bool("levelset.separate_solves", &c->levelset.separate_solves,
+       "solve φ alone, then ψ with φ held, before the solve of both together (the paper's order); false: the "
+       "joint solve starts from the initial guess (as stiff or stiffer, the level sets ~3× faster: "
+       "benchmarks/RESULTS.md)");
+  Integer("levelset.max_iterations", &c->levelset.max_iterations, 1, 100000,
+          "Ceres iterations of the φ solve and of the ψ solve (with levelset.separate_solves)");
   Integer("levelset.joint_iterations", &c->levelset.joint_iterations, 0, 100000,
-          "Ceres iterations of the final solve of φ and ψ together, at most (0: none; past 100 it "
-          "also ends once 24 iterations lowered its cost by less than 0.5 %)");
+          "Ceres iterations of the solve of φ and ψ together, at most (0: none, only with "
+          "levelset.separate_solves; past 100 it also ends once 24 iterations lowered its cost by less than 0.5 %)");
   Integer("levelset.crossing_rounds", &c->levelset.crossing_rounds, 0, 100,
           "local re-solves after it that raise transversality on the faces still crossing below levelset.min_angle, "
           "at most (0: none; they also end after 3 rounds in a row that do not reach the best state); if they "
@@ -294,6 +299,9 @@ Status CheckKeysTogether(const Config& c, const std::string& source) {
     return refuse("analysis.section.thickness: " + FormatNumber(section.thickness) + " m leaves no hollow in a " +
                   (circular ? "tube of analysis.section.diameter " : "box whose smaller side is ") +
                   FormatNumber(smallest) + " m (it must be less than half of that)");
+  if (c.levelset.joint_iterations == 0 && !c.levelset.separate_solves)
+    return refuse("levelset.joint_iterations: 0 leaves the level sets unsolved (the initial guess) unless "
+                  "levelset.separate_solves is true");
   const AnalysisOptions& a = c.analysis;
   if (a.panel_load == 0.0 && a.material.density * a.gravity == 0.0)
     return refuse("analysis.panel_load: the frame carries no load (analysis.panel_load and the steel's weight, "

@@ -1,6 +1,6 @@
 // The level-set problem on one mesh (paper §3.1): the terms of φ and ψ on their charts (seam
-// transitions included), and the solves: φ alone, ψ with φ held, both together, then the
-// crossing rounds (with the floor rounds where they fail). LevelSetProblem owns what the
+// transitions included), and the solves: φ alone and ψ with φ held (levelset.separate_solves
+// only), both together, then the crossing rounds (with the floor rounds where they fail). LevelSetProblem owns what the
 // solves share; the order in which the residual blocks are added is the order of the paper's
 // terms and must not change (Ceres' ordering, and with it the last bits of every solve,
 // follow it).
@@ -279,8 +279,10 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     (*problem)->SetSolvePrefix(prefix);
     (*problem)->Project();
     if (prefix.empty()) out->initial = (*problem)->Measure();  // the same initial guess for the retry
-    PQ_RETURN_IF_ERROR((*problem)->SolvePhi());
-    PQ_RETURN_IF_ERROR((*problem)->SolvePsi());
+    if (o.separate_solves) {
+      PQ_RETURN_IF_ERROR((*problem)->SolvePhi());
+      PQ_RETURN_IF_ERROR((*problem)->SolvePsi());
+    }
     return (*problem)->SolveJoint();
   };
   {

@@ -128,8 +128,14 @@ struct LevelsetOptions {
   // long where the second layout was needed, but 1.13–2× where it was not (its work thrown away,
   // the two solves slowing each other down): benchmarks/RESULTS.md, "The second layouts alongside the first".
   std::string alongside = "auto";
-  int max_iterations = 50;    // Ceres iterations of the φ solve and of the ψ solve
-  int joint_iterations = 300; // Ceres iterations of the final joint solve, at most (0: none; stall stop past 100)
+  // Whether φ is solved alone and then ψ with φ held before the joint solve (the paper's order),
+  // or the joint solve starts from the initial guess (the default since 2026-12-06: over the
+  // Great Court's seven meshes 0.93× (strain) and 0.97× (curvature) the compliance after
+  // stiffen, the corpus as stiff, its level sets 3× faster: benchmarks/RESULTS.md, "The joint
+  // solve from the initial guess").
+  bool separate_solves = false;
+  int max_iterations = 50;    // Ceres iterations of the φ solve and of the ψ solve (separate_solves only)
+  int joint_iterations = 300; // Ceres iterations of the joint solve, at most (0: none, separate_solves only; stall stop past 100)
   int crossing_rounds = 10;   // local re-solves raising transversality where the crossing is below min_angle, at most (0: none); floor rounds too where they fail
   bool seams = true;          // cut branch seams at guidance singularities and holes (φ, ψ jump across them)
   bool poles = true;          // a crown of the guidance (index +1) becomes a pole with a cap (needs seams)

@@ -218,8 +218,12 @@ TEST(Config, KeysThatContradictEachOtherAreRefused) {
               "analysis.section.thickness: 0.03 m leaves no hollow in a box whose smaller side is 0.06 m");
   ExpectError("guidance:\n  source: file\n", {}, "cfg.yaml: guidance.file: required when guidance.source is file");
   ExpectError("analysis:\n  panel_load: 0\n  gravity: 0\n", {}, "analysis.panel_load: the frame carries no load");
+  ExpectError("levelset:\n  joint_iterations: 0\n", {},
+              "cfg.yaml: levelset.joint_iterations: 0 leaves the level sets unsolved (the initial guess) unless "
+              "levelset.separate_solves is true");
   Config c;
   EXPECT_TRUE(Parse("analysis:\n  panel_load: 0\n", &c).ok());  // the steel's own weight is still a load
+  EXPECT_TRUE(Parse("levelset:\n  joint_iterations: 0\n  separate_solves: true\n", &c).ok());  // φ, then ψ only
 }
 
 TEST(Config, ResolvedJsonMirrorsTheKeys) {

@@ -53,7 +53,9 @@ const CorpusCase kCases[] = {
     // interior non-quads 3 → 0 here, dome_circular × strain 1 → 2, wavy × curvature 3 → 4.
     // Curvature fallback: the pole's fan loses rays next to the blended field's ±½ pairs:
     // interior non-quads 0 → 4 (three 3-gons and a 5-gon), spacing CV 0.334 → 0.349.
-    {"dome_square", "strain", {{"spacing_cv", 0.418}, {"interior_non_quads", 7}}},
+    // The joint solve from the initial guess (levelset.separate_solves false, 2026-12-06): interior
+    // non-quads 6 → 10 (the fans of its two poles lose more rays), spacing CV 0.349 → 0.339.
+    {"dome_square", "strain", {{"spacing_cv", 0.418}, {"interior_non_quads", 16}}},
     {"dome_square", "curvature", {}},
     // Openings drawn as circles since 2026-12-03 (geometry/roof_generators.cc): the hole's
     // polygon no longer has a kink at every vertex for the panels to follow. Strain: edge_min_h
@@ -76,7 +78,9 @@ const CorpusCase kCases[] = {
     // Curvature fallback: quads 0.781 → 0.842 (met), crossing 27.9° → 30.2°, spacing CV 0.23 → 0.32.
     // guidance.shear_switch (2026-12-05): the hypar's membrane is nearly pure shear, e_max swapped
     // by 90° along lines the solve bent to; alignment 14.5° → 8.0°, spacing CV 0.32 → 0.24: all met.
-    {"hypar", "strain", {}},
+    // The joint solve from the initial guess (2026-12-06): alignment 7.99° → 8.08°, spacing CV
+    // 0.244 → 0.265 (both solve orders end near the same cost; the targets sit on its edge).
+    {"hypar", "strain", {{"alignment", 10.1}, {"spacing_cv", 0.33}}},
     {"hypar", "curvature", {}},
     // guidance.shear_switch (2026-12-05): alignment 11.2° → 12.4°, spacing CV 0.25 → 0.28 (0.55 h
     // at the re-entrant corner).
@@ -97,7 +101,8 @@ const CorpusCase kCases[] = {
     {"two_holes", "strain", {{"quad_fraction", 0.69}}},
     // Since 2026-12-04 the crossing 0.09 h inside the small opening's rim moves onto the chord's
     // new point (MoveOntoBoundary, geometry/boundary_refinement.cc): 0.091 → 0.205 h, all met.
-    {"two_holes", "curvature", {}},
+    // The joint solve from the initial guess (2026-12-06): a 0.190 h edge.
+    {"two_holes", "curvature", {{"edge_min_h", 0.15}}},
     // The floor rounds: min crossing 18.8° → 25.3° (met), area below 30° 28 % → 5.4 %
     // (strain); 23.2° → 26.4° (met), 0.3 % → 1.25 % (curvature).
     // Curvature fallback: alignment 18.4° → 10.7°, area below 30° 5.4 % → met, quads 0.78 →
@@ -184,9 +189,9 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   if (c.roof == "wavy" && c.source == "curvature") EXPECT_EQ(stages.at("levelset").at("poles").size(), 3u);
   if (c.roof == "dome_circular" && c.source == "curvature")  // its joint solve crawls: cut at 100 iterations
     EXPECT_EQ(stages.at("levelset").at("ceres").at("joint").at("termination"), "STALLED");
-  if (c.roof == "wavy" && c.source == "strain") {  // after round 1 none reaches a better state: four run, not ten
-    EXPECT_TRUE(stages.at("levelset").at("ceres").contains("crossing_round_4"));
-    EXPECT_FALSE(stages.at("levelset").at("ceres").contains("crossing_round_5"));
+  if (c.roof == "wavy" && c.source == "strain") {  // after round 4 none reaches a better state: seven run, not ten
+    EXPECT_TRUE(stages.at("levelset").at("ceres").contains("crossing_round_7"));
+    EXPECT_FALSE(stages.at("levelset").at("ceres").contains("crossing_round_8"));
   }
   // The floor rounds run where the crossing rounds leave a face below min_angle (until
   // 2026-12-05: below min_angle − 5°) and their end is kept where it is the better one.
@@ -203,16 +208,22 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   // wavy roof's curvature layout is the cone's (26.4° floored → 28.3° by the crossing rounds),
   // the off-centre opening's strain layout keeps its first (29.9° against the cone's 25.1°).
   // The retry's solves are named cone_* in report.json (2026-12-06, later).
-  const bool coned = c.source == "curvature" && c.roof == "wavy";
-  const bool cone_tried = coned || (c.source == "strain" && c.roof == "hole_offcentre");
+  // Since the joint solve starts from the initial guess (2026-12-06, seventeenth session) the
+  // wavy roof's curvature layout keeps its first (floored, 27.4°) and the Great Court's at 44k
+  // (curvature) and 112k (both) take the cone's, which reach 30° with the crossing rounds alone.
+  const bool coned = (c.roof == "great_court_112k") || (c.roof == "great_court_44k" && c.source == "curvature");
+  const bool cone_tried = coned || (c.source == "strain" && c.roof == "hole_offcentre") ||
+                          (c.source == "curvature" && c.roof == "wavy");
   const nlohmann::json& cone = stages.at("levelset").value("tip_cone", nlohmann::json());
   EXPECT_EQ(!cone.is_null(), cone_tried);
   if (cone_tried) EXPECT_EQ(cone.at("kept").get<bool>(), coned);
   if (coned) EXPECT_GT(cone.at("min_crossing_with").get<double>(), cone.at("min_crossing_without").get<double>() + 1.0);
   // With the seams' offsets rounded together (2026-12-06) the 112k Great Court's curvature
-  // layout keeps the floor rounds' end (30.3°).
-  const bool floored = (c.source == "curvature" && (c.roof == "hole_offcentre" || c.roof == "great_court_112k")) ||
-                       (c.source == "strain" && (c.roof == "hypar" || c.roof == "saddle_elliptic" || c.roof == "hole_offcentre"));
+  // layout kept the floor rounds' end (30.3°). Since the joint solve starts from the initial
+  // guess: the opening's curvature layout, the hypar's, the two openings' and the wavy roof's
+  // strain layouts and the wavy roof's curvature layout keep the floor rounds' end.
+  const bool floored = (c.source == "curvature" && (c.roof == "hole_offcentre" || c.roof == "wavy")) ||
+                       (c.source == "strain" && (c.roof == "hypar" || c.roof == "two_holes" || c.roof == "wavy"));
   const nlohmann::json& ceres = stages.at("levelset").at("ceres");
   const std::string kept_solves = coned ? "cone_" : "";  // the solves whose end the layout is
   EXPECT_EQ(ceres.contains("cone_joint"), cone_tried);

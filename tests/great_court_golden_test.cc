@@ -79,9 +79,12 @@ void ExpectLevelsetTargets(const nlohmann::json& l) {
 // shortest edge 0.205 h; δ 1.5e-4, closeness 0.007 h).
 // This is the paper's layout: alignment only where |ε_max| is strong (guidance.fallback = none,
 // guidance.shear_switch = paper; the default fills the weak zones with curvature lines and
-// takes no weight where e_max swaps by 90°, next test).
+// takes no weight where e_max swaps by 90°, next test), solved in the paper's order, φ, then ψ,
+// then both (levelset.separate_solves; from the initial guess, the default since 2026-12-06,
+// this layout aligns to 6.34° and its φ spacing CV is 0.174 where the weight is > 0.5).
 TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
-  const nlohmann::json s = GreatCourtStages("strain", {"guidance.fallback=none", "guidance.shear_switch=paper"});
+  const nlohmann::json s = GreatCourtStages("strain", {"guidance.fallback=none", "guidance.shear_switch=paper",
+                                                       "levelset.separate_solves=true"});
   ExpectCommonTargets(s, 3.0);
   ExpectLevelsetTargets(s["levelset"]);
   // The strain field's singularities lie in the weak bands along the edges: no seam is worth
@@ -104,7 +107,7 @@ TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
   const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();  // TempDir() would wipe it
   std::ifstream svg(std::filesystem::temp_directory_path() /
                     ("pqlayout_test_" + std::string(test->test_suite_name()) + "_" + test->name()) /
-                    "strain3/figures/planarity.svg");
+                    "strain4/figures/planarity.svg");
   ASSERT_TRUE(svg.good());
   const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
   const auto& p = s["planarize"];
@@ -125,7 +128,9 @@ TEST(GreatCourt, StrainLayoutMeetsIssues4To6) {
 // longer uses up the tolerance (stiffen.slide 0.1 m instead of 0.01 m, 2026-12-05): 53,257 J
 // here, ≤ 65,866 J over the seven meshes; since the planes are measured from their faces
 // 52,991 J, ≤ 73,112 J; since the seams' offsets are rounded together (2026-12-06) 55,003 J
-// here, ≤ 56,555 J over the seven (benchmarks/ensemble/stiffness_offsets_rounded_together.csv).
+// here, ≤ 56,555 J over the seven (benchmarks/ensemble/stiffness_offsets_rounded_together.csv);
+// since the joint solve starts from the initial guess (levelset.separate_solves false,
+// 2026-12-06) 51,544 J here, ≤ 51,697 J over the seven (benchmarks/ensemble/stiffness_joint_from_initial_guess.csv).
 TEST(GreatCourt, StrainLayoutWithCurvatureFallbackIsTwiceAsStiff) {
   const nlohmann::json s = GreatCourtStages("strain", {}, Stage::kStiffen);
   ExpectCommonTargetsExceptCrossing(s, 3.0);
@@ -136,7 +141,7 @@ TEST(GreatCourt, StrainLayoutWithCurvatureFallbackIsTwiceAsStiff) {
   EXPECT_LE(s["levelset"]["alignment_rms_deg_source_above_half"].get<double>(), 3.0);
   EXPECT_LE(s["levelset"]["alignment_rms_deg_weight_above_half"].get<double>(), 3.0);
   EXPECT_EQ(s["planarize"]["folded_faces"].get<int>(), 0);
-  EXPECT_LE(s["stiffen"]["compliance_after"].get<double>(), 60000.0);
+  EXPECT_LE(s["stiffen"]["compliance_after"].get<double>(), 55000.0);
   EXPECT_LE(s["stiffen"]["closeness_max"].get<double>(), 0.1);  // stiffen.tolerance, with a slide of 0.1 m along it
   EXPECT_LE(s["stiffen"]["planarity_max"].get<double>(), 1e-3);
 }

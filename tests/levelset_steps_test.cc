@@ -72,22 +72,31 @@ TEST(LevelSets, SolveLeavesTheSmoothnessToConjugateGradientsAndFindsTheMinimum) 
 }
 
 // levelset.linear_solver chooses each step's solver (report.json's ceres entries name it), and
-// the flat square's straight, even lines come out of either.
+// levelset.separate_solves whether φ and ψ are solved one by one before the joint solve (the
+// paper's order) or the joint solve starts from the initial guess (default); the flat square's
+// straight, even lines come out of each.
 TEST(LevelSets, LinearSolverKeyChoosesTheStepsSolver) {
   const SurfaceModel s(GeneratedMesh("plane", 12.0, 12.0, 0.0, 0.6));
   const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d&) { return Eigen::Vector3d::UnitX(); });
   EXPECT_EQ(LevelsetOptions().linear_solver, "cholesky");
+  EXPECT_FALSE(LevelsetOptions().separate_solves);
   for (const std::string solver : {"cholesky", "cg"}) {
-    LevelsetOptions options;
-    options.linear_solver = solver;
-    LevelSetSolution solution;
-    ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, &solution).ok());
-    for (const char* solve : {"phi", "psi", "joint"})
-      EXPECT_EQ(solution.solver.at(solve).at("linear_solver"), solver == "cg" ? "CGNR" : "SPARSE_NORMAL_CHOLESKY")
-          << solver << " " << solve;
-    EXPECT_LE(solution.metrics.alignment_rms_deg, 0.1) << solver;
-    EXPECT_LE(solution.metrics.spacing_cv_phi, 1e-3) << solver;
-    EXPECT_GE(solution.metrics.min_crossing_angle_deg, 89.0) << solver;
+    for (const bool separate : {false, true}) {
+      LevelsetOptions options;
+      options.linear_solver = solver;
+      options.separate_solves = separate;
+      LevelSetSolution solution;
+      ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, &solution).ok());
+      EXPECT_EQ(solution.solver.contains("phi"), separate);
+      EXPECT_EQ(solution.solver.contains("psi"), separate);
+      for (const char* solve : {"phi", "psi", "joint"})
+        if (solution.solver.contains(solve))
+          EXPECT_EQ(solution.solver.at(solve).at("linear_solver"), solver == "cg" ? "CGNR" : "SPARSE_NORMAL_CHOLESKY")
+              << solver << " " << solve;
+      EXPECT_LE(solution.metrics.alignment_rms_deg, 0.1) << solver << separate;
+      EXPECT_LE(solution.metrics.spacing_cv_phi, 1e-3) << solver << separate;
+      EXPECT_GE(solution.metrics.min_crossing_angle_deg, 89.0) << solver << separate;
+    }
   }
 }
 

@@ -289,17 +289,18 @@ TEST(LevelSets, CrossingRoundsLiftEveryFaceToTheMinimumAngle) {
 // The floor rounds (problems/levelset_problem.cc, FloorRounds): where the crossing rounds end
 // with a fold-over or a face more than 5° below min_angle, local re-solves with a barrier
 // under the worst face, from the joint solve's end. The index +1 guidance of the test above
-// with min_angle 40°: 14.1° without any rounds; the crossing rounds leave a face below 35°
-// and the floor rounds' end, 38.1° (41 faces below 40°, none folded), is kept (when written).
-// (With levelset.linear_solver = cg the crossing rounds reach 35.1° there and their end is
-// kept; at 42° it is the floor rounds' again, 41.9°.)
+// with min_angle 50°: 15.2° without any rounds; the crossing rounds leave a face far below
+// and the floor rounds' end, 37.3° (46 faces below 50°, none folded), is kept (2026-12-06).
+// (Until the joint solve started from the initial guess this test asked for 40°, which the
+// layout now reaches with the crossing rounds alone; at 44° and from 48° the floor rounds'
+// end is kept too, at 36–46° the crossing rounds' end in some.)
 TEST(LevelSets, FloorRoundsLiftTheWorstCrossingWhereTheCrossingRoundsCannot) {
   LevelsetOptions options;
-  options.min_angle = 40.0;
+  options.min_angle = 50.0;
   LevelSetSolution without, with;
   SolveRingGuidance(options, 3, &without, &with);
   ASSERT_FALSE(HasFatalFailure());
-  std::cout << "min angle 40°: " << without.metrics.min_crossing_angle_deg << "° without rounds, "
+  std::cout << "min angle 50°: " << without.metrics.min_crossing_angle_deg << "° without rounds, "
             << with.metrics.min_crossing_angle_deg << "° (" << with.metrics.faces_below_min_angle
             << " faces below, " << with.metrics.foldovers << " folded) with, kept: " << with.crossing_rounds_kept << "\n";
   EXPECT_LT(without.metrics.min_crossing_angle_deg, 25.0);
