@@ -13,7 +13,8 @@
 # caught the poles' doubling of the Great Court's level-set stage (7.1 → 15.3 s, 2026-12-02).
 # The baseline is machine-specific: update it (and say on which machine) when the machine or
 # a deliberate trade changes. Needs jq (installed if missing). The committed baseline: the
-# project's 2-core machine, idle, 2026-12-03, commit after fe70fcb (the pole gate).
+# project's 2-core machine, idle, 2026-12-06, after 8baa834 (the joint solve from the initial
+# guess; the one before: 2026-12-03, after fe70fcb, the pole gate).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
