@@ -1,9 +1,9 @@
 // The level-set problem on one mesh (paper §3.1): the terms of φ and ψ on their charts (seam
 // transitions included), and the solves: φ alone and ψ with φ held (levelset.separate_solves
-// only), both together, then the crossing rounds (with the floor rounds where they fail). LevelSetProblem owns what the
-// solves share; the order in which the residual blocks are added is the order of the paper's
-// terms and must not change (Ceres' ordering, and with it the last bits of every solve,
-// follow it).
+// only), both together, then the crossing rounds (with the floor rounds where they fail).
+// LevelSetProblem owns what the solves share; the order in which the residual blocks are
+// added is the order of the paper's terms and must not change (Ceres' ordering, and with it
+// the last bits of every solve, follow it).
 #include "problems/levelset_problem.h"
 
 #include <glog/logging.h>
@@ -169,7 +169,7 @@ Status LevelSetProblem::SolveJoint() {
 
 namespace {
 
-// The cone's whole solve (φ to the joint, from the initial guess) on its own φ, ψ and Ceres
+// The cone's whole solve (to the joint, from the initial guess) on its own φ, ψ and Ceres
 // summaries, so that it can run beside the first layout's: TryTipCone merges what it keeps.
 struct ConeSolve {
   LevelSetSolution solution;
@@ -269,7 +269,8 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   state->plain.tip_cone_radius = 0.0;
   state->phi0 = solution->phi;
   state->psi0 = solution->psi;
-  // The whole solve, φ to the joint (the rounds come with `finish`), from the initial guess.
+  // The whole solve from the initial guess to the joint (φ and ψ alone first with
+  // levelset.separate_solves; the rounds come with `finish`).
   // Reads s, g, seams and *state, writes only *out and *problem: two can run at once.
   const WholeSolve solve = [state, &s, &g, h, seams](const LevelsetOptions& o, const std::string& prefix,
                                                      LevelSetSolution* out, std::unique_ptr<LevelSetProblem>* problem) {
