@@ -282,8 +282,10 @@ class Progress final : public ceres::IterationCallback {
 Status Minimise(const Objective& F, double allowed, const StiffenOptions& options, std::vector<Vec3>* q,
                 std::vector<std::vector<Vec3>>* run_ends, StiffenReport* report) {
   std::vector<double> z = F.box().Parameters(*q);
-  const PlanarityManifold manifold(F.problem(), F.box(), allowed);
-  if (!manifold.Retract(z.data())) LOG(WARNING) << "stiffen: the start could not be brought within the planarity target";
+  PlanarityManifold manifold(F.problem(), F.box(), allowed);
+  if (!manifold.Retract(z.data()))
+    LOG(INFO) << "stiffen: the start could not be brought within " << allowed << " on every sub-quad; "
+              << manifold.AdmitStart(z.data()) << " of them may stay as planar as they start, not more bent";
   Progress progress(F, manifold);
   for (int budget = options.max_iterations, run = 1; budget > 0; ++run) {
     ceres::GradientProblem problem(new BorrowedFunction(F), new BorrowedManifold(manifold));

@@ -29,7 +29,10 @@
 //   line-search minimiser does not take);
 //   planarity is a ceres::Manifold (problems/stiffen_manifold.h): every gradient and step
 //   projected on the null space of the active sub-quads' Jacobian, every step retracted by
-//   min-norm Gauss–Newton, so every iterate has δ ≤ 0.9 × target (+5 %).
+//   min-norm Gauss–Newton, so every iterate has δ ≤ 0.9 × target (+5 %). A start the
+//   retraction cannot bring there (planarize stops at δ ≤ target) bounds each sub-quad it
+//   leaves above by its own start δ instead (PlanarityManifold::AdmitStart): until 2026-12-07
+//   such a start ended the stage at C × 1 (a warning) where it otherwise gains ~30 %.
 // C and ∇C come from the adjoint (problems/grid_frame.h, one CHOLMOD factorisation per
 // evaluation, the start's joints kept); the other terms are Ceres residual functors on the
 // world positions whose cost and gradient ceres::Problem::Evaluate returns. The run ends when

@@ -37,12 +37,22 @@ struct PlanarityManifold::Linearisation {
 };
 
 PlanarityManifold::PlanarityManifold(const StiffenProblem& P, const BoxVariables& box, double allowed)
-    : P_(P), box_(box), allowed_(allowed), delta_(SignedPlanarityResidual::Create()) {
+    : P_(P), box_(box), delta_(SignedPlanarityResidual::Create()) {
   for (size_t k = 0; k < P.sub_quads.size(); ++k) {
     const auto& s = P.sub_quads[k];
     if (box.FreeIndex(s[0]) >= 0 || box.FreeIndex(s[1]) >= 0 || box.FreeIndex(s[2]) >= 0 || box.FreeIndex(s[3]) >= 0)
       constraints_.push_back(static_cast<int>(k));
   }
+  allowed_.assign(constraints_.size(), allowed);
+}
+
+int PlanarityManifold::AdmitStart(const double* z) {
+  const std::vector<double> values = Values(z);
+  int raised = 0;
+  for (size_t r = 0; r < values.size(); ++r)
+    if (std::abs(values[r]) > allowed_[r]) allowed_[r] = std::abs(values[r]), ++raised;
+  cache_.clear();  // their active sets were found with the old allowances
+  return raised;
 }
 
 PlanarityManifold::~PlanarityManifold() = default;
@@ -103,7 +113,7 @@ const PlanarityManifold::Linearisation& PlanarityManifold::At(const double* z, c
   const std::vector<double> values = Values(z);
   std::vector<int> rows;
   for (size_t r = 0; r < values.size(); ++r)
-    if (std::abs(values[r]) >= (1.0 - kActiveBand) * allowed_) rows.push_back(static_cast<int>(r));
+    if (std::abs(values[r]) >= (1.0 - kActiveBand) * allowed_[r]) rows.push_back(static_cast<int>(r));
   const std::vector<Vec3> x = World(P_, box_.Local(z));
   const auto dz = [&](int k, int c) { return box_.Derivative(k, c, z); };
   auto A = Linearise(x, rows, values, dz, nullptr, kRegularisation);
@@ -178,15 +188,15 @@ bool PlanarityManifold::Retract(double* z) const {
     const std::vector<double> z_now = box_.Parameters(q);
     const std::vector<double> values = Values(z_now.data());
     std::vector<int> rows;
-    double worst = 0.0;
+    bool violated = false;
     for (size_t r = 0; r < values.size(); ++r) {
-      worst = std::max(worst, std::abs(values[r]) - allowed_);
-      if (std::abs(values[r]) >= (1.0 - kActiveBand) * allowed_) rows.push_back(static_cast<int>(r));
+      violated = violated || std::abs(values[r]) - allowed_[r] > kRetractTolerance * allowed_[r];
+      if (std::abs(values[r]) >= (1.0 - kActiveBand) * allowed_[r]) rows.push_back(static_cast<int>(r));
     }
-    if (worst <= kRetractTolerance * allowed_) break;
+    if (!violated) break;
     if (iteration == kRetractions) return false;
     Eigen::VectorXd c(rows.size());
-    for (size_t i = 0; i < rows.size(); ++i) c[i] = std::abs(values[rows[i]]) - (1.0 - kRetractAim) * allowed_;
+    for (size_t i = 0; i < rows.size(); ++i) c[i] = std::abs(values[rows[i]]) - (1.0 - kRetractAim) * allowed_[rows[i]];
     const std::vector<Vec3> x = World(P_, q);
     std::vector<bool> frozen(n, false);
     Eigen::VectorXd step;

@@ -4,6 +4,7 @@
 
 #include <iostream>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -311,6 +312,13 @@ struct ManifoldFixture {
   ShallowRoof roof;
   ClosestPointQuery query;
   GridFrame frame;
+  // δ of every sub-quad at the box variables z.
+  std::vector<double> Deltas(const BoxVariables& box, const std::vector<double>& z) const {
+    const std::vector<Eigen::Vector3d> x = World(P, box.Local(z.data()));
+    std::vector<double> out;
+    for (const auto& s : P.sub_quads) out.push_back(QuadPlanarityDelta(x[s[0]], x[s[1]], x[s[2]], x[s[3]]));
+    return out;
+  }
   StiffenProblem P;
   std::vector<Eigen::Vector3d> q;
 };
@@ -359,12 +367,7 @@ TEST(StiffenManifold, RetractionAndProjection) {
   ASSERT_TRUE(manifold.Retract(z.data()));
   EXPECT_LE(MaxPlanarity(m.P, World(m.P, box.Local(z.data()))), 1.05 * allowed);
 
-  const auto deltas = [&](const std::vector<double>& at) {
-    const std::vector<Eigen::Vector3d> x = World(m.P, box.Local(at.data()));
-    std::vector<double> out;
-    for (const auto& s : m.P.sub_quads) out.push_back(QuadPlanarityDelta(x[s[0]], x[s[1]], x[s[2]], x[s[3]]));
-    return out;
-  };
+  const auto deltas = [&](const std::vector<double>& at) { return m.Deltas(box, at); };
   const std::vector<double> before = deltas(z);
   std::vector<double> d(z.size()), moved(z.size()), plain(z.size());
   for (double& v : d) v = u(rng);
@@ -389,6 +392,35 @@ TEST(StiffenManifold, RetractionAndProjection) {
   const Eigen::Map<const Eigen::VectorXd> G(g.data(), g.size()), T(t.data(), t.size());
   EXPECT_GT(T.dot(G), 0.0);
   EXPECT_LE(T.norm(), G.norm() * (1 + 1e-12));
+}
+
+// A start above δ_allowed that is not retracted (stiffen.cc: planarize stops at the target,
+// stiffen asks 0.9 × it): AdmitStart raises exactly the sub-quads above δ_allowed to their own
+// |δ|, the start is then on the set as it is, and a retraction from a perturbed point keeps
+// every sub-quad within its own bound — the raised ones at their start, the others at δ_allowed.
+TEST(StiffenManifold, AdmitStartRaisesOnlyTheSubQuadsAboveTheAllowance) {
+  ManifoldFixture m;
+  const BoxVariables box(m.P);
+  const std::vector<double> start = box.Parameters(m.q);
+  const auto deltas = [&](const std::vector<double>& at) { return m.Deltas(box, at); };
+  const std::vector<double> before = deltas(start);
+  const double allowed = 0.5 * *std::max_element(before.begin(), before.end());
+  int above = 0;
+  for (const double d : before) above += d > allowed;
+  ASSERT_GE(above, 2);
+  ASSERT_LT(above, static_cast<int>(before.size()) - 2) << "some sub-quads must stay at δ_allowed";
+  PlanarityManifold manifold(m.P, box, allowed);
+  EXPECT_EQ(manifold.AdmitStart(start.data()), above);
+  std::vector<double> z = start;
+  ASSERT_TRUE(manifold.Retract(z.data()));
+  EXPECT_EQ(z, start) << "the start is on the set: the retraction leaves it bit for bit";
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double& v : z) v += 0.2 * u(rng);
+  ASSERT_TRUE(manifold.Retract(z.data()));
+  const std::vector<double> after = deltas(z);
+  for (size_t k = 0; k < after.size(); ++k)
+    EXPECT_LE(after[k], std::max(allowed, before[k]) * (1.0 + 1e-3) + 1e-15) << "sub-quad " << k;
 }
 
 }  // namespace
