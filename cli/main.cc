@@ -66,12 +66,15 @@ struct RunArguments {
   bool draft = false;      // --draft: --set levelset.draft=true
 };
 
-// `--draft` (run, compare, sweep): a quick look, the same as `--set levelset.draft=true`.
+// `--draft` (run, compare, sweep): a quick look, the same as `--set levelset.draft=true --set
+// stiffen.stop_window=5 --set stiffen.stop_gain=0.01` ahead of the command line's own --set
+// values, which win over it.
 constexpr const char* kDraftHelp =
-    "a quick look: the level sets on a coarser working mesh, ~5x faster, a different and usually somewhat softer "
-    "layout (same as --set levelset.draft=true; README \"Draft runs\")";
+    "a quick look: the level sets on a coarser working mesh and stiffen stopped early, ~2x faster in all, a "
+    "different and usually somewhat softer layout (same as --set levelset.draft=true --set stiffen.stop_window=5 "
+    "--set stiffen.stop_gain=0.01, each overridden by an explicit --set; README \"Draft runs\")";
 std::vector<std::string> WithDraft(std::vector<std::string> sets, bool draft) {
-  if (draft) sets.push_back("levelset.draft=true");
+  if (draft) sets.insert(sets.begin(), {"levelset.draft=true", "stiffen.stop_window=5", "stiffen.stop_gain=0.01"});
   return sets;
 }
 

@@ -164,6 +164,10 @@ KeyTable::KeyTable(Config* c) {
   Number("stiffen.slide", &st.slide, NonNegative(kMaxLength), "how far a vertex may also slide along the reference, m, per tangent direction (at most 0.1 h); the slide does not use up stiffen.tolerance");
   Number("stiffen.min_member", &st.min_member, Range{0.0, 1.0, true, true}, "no member shorter than this × its planarised length (nor than 1.1 × the section depth)");
   Integer("stiffen.max_iterations", &st.max_iterations, 1, 100000, "L-BFGS iterations in all, one or two frame solves each (stiffen.tolerance = 0 turns the stage off)");
+  Integer("stiffen.stop_window", &st.stop_window, 2, 100000,
+          "the stage ends once this many iterations lowered its objective by less than stiffen.stop_gain of it (--draft: 5)");
+  Number("stiffen.stop_gain", &st.stop_gain, Range{0.0, 1.0, true, true},
+         "see stiffen.stop_window (--draft: 0.01; 0.005 leaves C/C₀ within ~0.5 % of its converged value)");
   Number("stiffen.weights.fairness", &st.weights.fairness, NonNegative(kMaxWeight), "mesh polylines keep their planarised second differences (panel kinks)");
   Number("stiffen.weights.edge_length", &st.weights.edge_length, NonNegative(kMaxWeight), "members stay longer than their minimum");
 

@@ -102,8 +102,6 @@ constexpr double kJointWeight = 1e4;      // joints stay joints (the frame's top
 constexpr double kHingeWeight = 1e4;      // × stiffen.weights.edge_length: at weight 1 a member 5 mm short of its
                                           // minimum costs ~0.1 × C₀ at h = 1.25 m (at 1 × it cost 1e-5 and a
                                           // member of the strain grid shrank into a joint)
-constexpr int kWindow = 20;               // Progress: the window of iterations …
-constexpr double kWindowGain = 5e-3;      // … that must lower the objective by this (relative) to go on
 constexpr double kRestartGain = 1e-3;     // a fresh L-BFGS run that gains less ends the stage
 constexpr double kStationary = 1e-9;      // a normal gradient below this (max |∂F/∂z_n|, F ~ 1) is a stationary start
 constexpr double kBump = 0.1;             // … from which the run starts at a bump of this × the normal room
@@ -155,6 +153,7 @@ class Objective final : public ceres::FirstOrderFunction {
   const StiffenProblem& problem() const { return P_; }
   const BoxVariables& box() const { return box_; }
   double last_ratio() const { return last_ratio_; }  // C/C₀ at the last evaluation
+  int evaluations() const { return report_->evaluations; }
 
   bool Evaluate(const double* z, double* cost, double* gradient) const override;
 
@@ -231,9 +230,10 @@ class BorrowedManifold final : public ceres::Manifold {
 };
 
 // Logs every 50th iteration (the stage runs for tens of seconds on fine grids) and ends the
-// minimisation when kWindow iterations lowered F by less than kWindowGain of it: measured on
-// the Great Court (h = 3 m and 1.25 m), C/C₀ is then within 0.5 % of its converged value, and
-// what follows polishes the fairness term for as long again.
+// minimisation when stiffen.stop_window iterations lowered F by less than stiffen.stop_gain of
+// it: at the defaults (20, 0.5 %), measured on the Great Court (h = 3 m and 1.25 m), C/C₀ is
+// then within 0.5 % of its converged value, and what follows polishes the fairness term for as
+// long again.
 // One Progress spans every L-BFGS run of the stage (its window carries across restarts: on a
 // 112k-triangle Great Court reference every run stopped in its line search after 7 iterations,
 // a per-run window of 20 never filled, and the stage spent its 1000 iterations, 47 s). It also
@@ -241,13 +241,16 @@ class BorrowedManifold final : public ceres::Manifold {
 // failure reports 1 → −1.
 class Progress final : public ceres::IterationCallback {
  public:
-  Progress(const Objective& F, const PlanarityManifold& manifold) : F_(F), manifold_(manifold) {}
+  Progress(const Objective& F, const PlanarityManifold& manifold, int window, double gain)
+      : F_(F), manifold_(manifold), window_(window, gain) {}
   // Called before each run with the iterations spent so far.
   void StartRun(int offset) {
     offset_ = offset;
     run_first_ = run_last_ = std::numeric_limits<double>::quiet_NaN();
   }
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    VLOG(1) << "stiffen: iteration " << s.iteration + offset_ << ", objective " << s.cost << ", C/C₀ "
+            << F_.last_ratio() << ", " << F_.evaluations() << " frame solves";
     if ((s.iteration + offset_) % 50 == 0 && s.iteration > 0)
       LOG(INFO) << "stiffen: iteration " << s.iteration + offset_ << ", objective " << s.cost << ", C/C₀ "
                 << F_.last_ratio() << ", " << manifold_.active() << " planarity constraints active";
@@ -269,7 +272,7 @@ class Progress final : public ceres::IterationCallback {
   const PlanarityManifold& manifold_;
   int offset_ = 0;
   double run_first_ = 0.0, run_last_ = 0.0;
-  CostWindow window_{kWindow, kWindowGain};
+  CostWindow window_;
   bool converged_ = false;
 };
 
@@ -286,7 +289,7 @@ Status Minimise(const Objective& F, double allowed, const StiffenOptions& option
   if (!manifold.Retract(z.data()))
     LOG(INFO) << "stiffen: the start could not be brought within " << allowed << " on every sub-quad; "
               << manifold.AdmitStart(z.data()) << " of them may stay as planar as they start, not more bent";
-  Progress progress(F, manifold);
+  Progress progress(F, manifold, options.stop_window, options.stop_gain);
   for (int budget = options.max_iterations, run = 1; budget > 0; ++run) {
     ceres::GradientProblem problem(new BorrowedFunction(F), new BorrowedManifold(manifold));
     ceres::GradientProblemSolver::Options solver_options;

@@ -117,7 +117,8 @@ TEST(Cli, OutputFieldsFalseWritesNoFieldFiles) {
   EXPECT_NE(html.find("quads.obj"), std::string::npos);
 }
 
-// --draft (= --set levelset.draft=true) solves the level sets on a working mesh of edge 0.8 h
+// --draft (= --set levelset.draft=true --set stiffen.stop_window=5 --set stiffen.stop_gain=0.01,
+// ahead of the command line's own --set values) solves the level sets on a working mesh of edge 0.8 h
 // instead of 0.4 h, but at most a 16th of the shortest boundary loop: here (10 × 6 m, 32 m
 // round) the 1 m reference is kept at h = 2 m (0.8 m working edge) but remeshed to 1.6 m for
 // the draft, and at h = 3 m the draft's 2.4 m is capped to 2 m. An explicit
@@ -129,6 +130,8 @@ TEST(Cli, DraftSolvesTheLevelSetsOnACoarserWorkingMesh) {
     int triangles;
     double edge;
     bool draft;
+    int stop_window;
+    double stop_gain;
   };
   const auto working = [&](const std::string& name, const std::string& flags) {
     const Result r = RunPqlayout(dir, "run plane.yaml -q --until levelset --set output.fields=false --out " + name + flags);
@@ -136,13 +139,25 @@ TEST(Cli, DraftSolvesTheLevelSetsOnACoarserWorkingMesh) {
     const auto report = ReadReport(dir + "/" + name);
     const auto& l = report["stages"]["levelset"];
     return Working{l["working_mesh_triangles"].get<int>(), l["working_edge"].get<double>(),
-                   report["config"]["levelset"]["draft"].get<bool>()};
+                   report["config"]["levelset"]["draft"].get<bool>(),
+                   report["config"]["stiffen"]["stop_window"].get<int>(),
+                   report["config"]["stiffen"]["stop_gain"].get<double>()};
   };
   const Working full = working("full", ""), draft = working("draft", " --draft"),
                 pinned = working("pinned", " --draft --set levelset.working_edge=0.8"),
                 capped = working("capped", " --draft --set layout.spacing=3");
   EXPECT_FALSE(full.draft);
   EXPECT_TRUE(draft.draft);
+  EXPECT_EQ(full.stop_window, 20);
+  EXPECT_EQ(full.stop_gain, 0.005);
+  EXPECT_EQ(draft.stop_window, 5);
+  EXPECT_EQ(draft.stop_gain, 0.01);
+  // The command line's own --set values win over --draft's, wherever they stand.
+  const Working own = working("own", " --set stiffen.stop_window=9 --draft --set levelset.draft=false");
+  EXPECT_FALSE(own.draft);
+  EXPECT_EQ(own.stop_window, 9);
+  EXPECT_EQ(own.stop_gain, 0.01);
+  EXPECT_EQ(own.triangles, full.triangles);
   EXPECT_DOUBLE_EQ(full.edge, 0.8);
   EXPECT_DOUBLE_EQ(draft.edge, 1.6);
   EXPECT_LT(draft.triangles, full.triangles / 2) << full.triangles;
