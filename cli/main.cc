@@ -63,14 +63,14 @@ struct RunArguments {
   std::string out;
   std::string until = "analyze";
   std::string error_file;  // run: on failure the error line is also written here, on success removed
-  bool draft = false;      // --draft: --set levelset.draft=true
+  bool draft = false;      // --draft: WithDraft's --set values
 };
 
 // `--draft` (run, compare, sweep): a quick look, the same as `--set levelset.draft=true --set
 // stiffen.stop_window=5 --set stiffen.stop_gain=0.01` ahead of the command line's own --set
 // values, which win over it.
 constexpr const char* kDraftHelp =
-    "a quick look: the level sets on a coarser working mesh and stiffen stopped early, ~2x faster in all, a "
+    "a quick look: the level sets on a coarser working mesh and stiffen stopped early, ~3x faster in all, a "
     "different and usually somewhat softer layout (same as --set levelset.draft=true --set stiffen.stop_window=5 "
     "--set stiffen.stop_gain=0.01, each overridden by an explicit --set; README \"Draft runs\")";
 std::vector<std::string> WithDraft(std::vector<std::string> sets, bool draft) {
@@ -111,7 +111,7 @@ struct SweepArguments {
   pqlayout::SweepOptions options;
   int jobs = 1;
   bool list = false;
-  bool draft = false;  // --draft: --set levelset.draft=true in every run
+  bool draft = false;  // --draft: WithDraft's --set values in every run
 };
 
 // The path printed in --list commands: as invoked if that was a path, else found on PATH.

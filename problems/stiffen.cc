@@ -287,8 +287,8 @@ Status Minimise(const Objective& F, double allowed, const StiffenOptions& option
   std::vector<double> z = F.box().Parameters(*q);
   PlanarityManifold manifold(F.problem(), F.box(), allowed);
   if (!manifold.Retract(z.data()))
-    LOG(INFO) << "stiffen: the start could not be brought within " << allowed << " on every sub-quad; "
-              << manifold.AdmitStart(z.data()) << " of them may stay as planar as they start, not more bent";
+    LOG(INFO) << "stiffen: the start could not be brought within δ " << allowed << " on every sub-quad; "
+              << manifold.AdmitStart(z.data()) << " sub-quads keep their start's δ as their bound";
   Progress progress(F, manifold, options.stop_window, options.stop_gain);
   for (int budget = options.max_iterations, run = 1; budget > 0; ++run) {
     ceres::GradientProblem problem(new BorrowedFunction(F), new BorrowedManifold(manifold));
