@@ -249,11 +249,10 @@ class Progress final : public ceres::IterationCallback {
     run_first_ = run_last_ = std::numeric_limits<double>::quiet_NaN();
   }
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
-    VLOG(1) << "stiffen: iteration " << s.iteration + offset_ << ", objective " << s.cost << ", C/C₀ "
-            << F_.last_ratio() << ", " << F_.evaluations() << " frame solves";
-    if ((s.iteration + offset_) % 50 == 0 && s.iteration > 0)
+    if (VLOG_IS_ON(1) || ((s.iteration + offset_) % 50 == 0 && s.iteration > 0))  // -v: every iteration
       LOG(INFO) << "stiffen: iteration " << s.iteration + offset_ << ", objective " << s.cost << ", C/C₀ "
-                << F_.last_ratio() << ", " << manifold_.active() << " planarity constraints active";
+                << F_.last_ratio() << ", " << manifold_.active() << " planarity constraints active, "
+                << F_.evaluations() << " frame solves";
     if (s.iteration == 0) run_first_ = s.cost;
     run_last_ = s.cost;
     if (s.iteration == 0 && !window_.empty()) return ceres::SOLVER_CONTINUE;  // the last run's end again
