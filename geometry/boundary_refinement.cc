@@ -160,6 +160,72 @@ struct Polygons {
   }
 };
 
+// Step 2's choice for a chord a – b of face f beyond tolerance (its boundary `span` on loop
+// `loop`): its ends moved instead of a new vertex, or before it (then queued again), or where
+// along the span the new vertex goes.
+struct ChordEnds {
+  const ReferenceBoundary& boundary;
+  const double tolerance, max_slide, min_edge, min_turn;
+  Polygons& m;
+  std::vector<QuadMeshVertex>& origin;
+  std::vector<bool>& pinned;
+  std::vector<std::optional<ReferenceBoundary::Location>>& located;
+  std::deque<std::pair<int, int>>& queue;
+
+  // The number of ends moved (their chords queued again); if none, *at: the new vertex's arc
+  // from span.from.
+  int MovedInstead(int f, int a, int b, int loop, const Span& span, double* at) {
+    std::vector<Eigen::Vector3d>& position = m.position;
+    const double from = span.from;
+    const auto requeue = [&](int end, const std::vector<QuadMeshVertex>* on_boundary) {
+      if (end < int(located.size())) located[end].reset();  // located again where it now is
+      m.BoundaryHalfedges(end, on_boundary, &queue);
+    };
+    // The new boundary vertex: at the sharp kink (SnapToSharpKinks) of the reference boundary
+    // farthest from the chord if the span holds one, else halfway. A kink within `tolerance` of
+    // an end adds at most `tolerance` to the chord's deviation: it counts as that end.
+    // A kink closer than min_edge to an end that may move takes that end instead.
+    const double kink = boundary.FarthestKink(position[a], position[b], loop, from, span.span, min_turn, tolerance);
+    if (kink >= 0.0 && std::min(kink, span.span - kink) < min_edge) {
+      const bool near_start = kink < span.span - kink;
+      const int end = near_start == span.a_first ? a : b;
+      const double start = near_start ? from : from + span.span;
+      if (SlideToKink(boundary, loop, start, from + kink - start, end, min_edge, m.faces, &position, &origin,
+                      &pinned)) {
+        requeue(end, nullptr);
+        return 1;
+      }
+    }
+    // Without a kink the chord is cut into the fewest equal pieces that follow the boundary
+    // (its first piece now, the rest when the remainder comes round the queue): halving
+    // instead cut a span 0.7 h long on a small opening into 0.35 h, then 0.175 h pieces,
+    // one vertex (and one triangle) more and edges below min_edge where thirds would do.
+    const int pieces = PiecesNeeded(boundary, loop, from, span.span, tolerance);
+    // Pieces shorter than min_edge on a cell with an even number of sides (a new vertex would
+    // leave it a triangle more): the chord is shortened instead.
+    if (kink < 0.0 && span.span / pieces < min_edge && m.faces[f].size() % 2 == 0) {
+      if (const int end = ShortenChord(boundary, loop, span, a, b, tolerance, max_slide, min_edge, m.faces,
+                                       &position, &origin, &pinned);
+          end >= 0) {
+        requeue(end, &origin);
+        return 1;
+      }
+    }
+    // The same on an odd cell (where the new vertex makes two quads of a pentagon): the ends
+    // move apart first, so that the pieces are min_edge long, if as many pieces still do.
+    const double widen = pieces * kRoomFactor * min_edge - span.span;
+    if (kink < 0.0 && widen > 0.0 && m.faces[f].size() % 2 == 1 &&
+        PiecesNeeded(boundary, loop, from - 0.5 * widen, span.span + widen, tolerance) == pieces) {
+      const std::vector<int> moved = WidenChord(boundary, loop, span, a, b, 0.5 * widen, 0.5 * widen, max_slide,
+                                                min_edge, m.faces, &position, &origin, &pinned);
+      for (const int end : moved) requeue(end, nullptr);
+      if (!moved.empty()) return static_cast<int>(moved.size());
+    }
+    *at = kink >= 0.0 ? kink : span.span / pieces;
+    return 0;
+  }
+};
+
 }  // namespace
 
 int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double max_slide, double min_edge,
@@ -189,6 +255,7 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
   int slid_to_kinks = SnapToSharpKinks(boundary, min_turn, min_edge, m.faces, m.face_of, &position, &origin, &pinned);
   int inserted = 0, moved_onto_boundary = 0;
   const int max_insertions = 4 * static_cast<int>(position.size()) + 16;  // a guard, reached once (above)
+  ChordEnds ends{boundary, tolerance, max_slide, min_edge, min_turn, m, origin, pinned, located, queue};
   while (!queue.empty() && inserted < max_insertions) {
     const auto [a, b] = queue.front();
     queue.pop_front();
@@ -205,42 +272,11 @@ int RefineBoundaryChords(const SurfaceModel& surface, double tolerance, double m
     const double from = span.from;
     if (boundary.ChordDeviation(position[a], position[b], la.loop, from, span.span) <= tolerance) continue;
 
-    // The new boundary vertex: at the sharp kink (SnapToSharpKinks) of the reference boundary
-    // farthest from the chord if the span holds one, else halfway. A kink within `tolerance` of
-    // an end adds at most `tolerance` to the chord's deviation: it counts as that end.
-    // A kink closer than min_edge to an end that may move takes that end instead.
-    const double kink = boundary.FarthestKink(position[a], position[b], la.loop, from, span.span, min_turn, tolerance);
-    if (kink >= 0.0 && std::min(kink, span.span - kink) < min_edge) {
-      const bool near_start = kink < span.span - kink;
-      const int end = near_start == span.a_first ? a : b;
-      const double start = near_start ? from : from + span.span;
-      if (SlideToKink(boundary, la.loop, start, from + kink - start, end, min_edge, m.faces, &position, &origin,
-                      &pinned)) {
-        located[end] = boundary.Locate(position[end]);
-        m.BoundaryHalfedges(end, nullptr, &queue);
-        ++slid_to_kinks;
-        continue;
-      }
+    double at = 0.0;
+    if (const int moved = ends.MovedInstead(f, a, b, la.loop, span, &at); moved > 0) {
+      slid_to_kinks += moved;
+      continue;
     }
-    // Without a kink the chord is cut into the fewest equal pieces that follow the boundary
-    // (its first piece now, the rest when the remainder comes round the queue): halving
-    // instead cut a span 0.7 h long on a small opening into 0.35 h, then 0.175 h pieces,
-    // one vertex (and one triangle) more and edges below min_edge where thirds would do.
-    const int pieces = PiecesNeeded(boundary, la.loop, from, span.span, tolerance);
-    // Pieces shorter than min_edge on a cell with an even number of sides (a new vertex would
-    // leave it a triangle more; on an odd cell it makes two quads of a pentagon, worth the
-    // short edge): the chord is shortened instead.
-    if (kink < 0.0 && span.span / pieces < min_edge && m.faces[f].size() % 2 == 0) {
-      if (const int end = ShortenChord(boundary, la.loop, span, a, b, tolerance, max_slide, min_edge, m.faces,
-                                       &position, &origin, &pinned);
-          end >= 0) {
-        if (end < int(located.size())) located[end].reset();
-        m.BoundaryHalfedges(end, &origin, &queue);
-        ++slid_to_kinks;
-        continue;
-      }
-    }
-    const double at = kink >= 0.0 ? kink : span.span / pieces;
     Eigen::Vector3d p;
     const QuadMeshVertex on_boundary = boundary.PointAt(la.loop, from + at, &p);
     if (const int v = m.MoveOntoBoundary(f, a, b, p, origin, min_edge); v >= 0) {

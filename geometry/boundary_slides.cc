@@ -1,6 +1,7 @@
 #include "geometry/boundary_slides.h"
 
 #include <algorithm>
+#include <tuple>
 #include <cmath>
 #include <set>
 
@@ -170,9 +171,13 @@ int SlideBoundaryVertices(const ReferenceBoundary& boundary, double tolerance, d
   return moved;
 }
 
-bool SlideToKink(const ReferenceBoundary& boundary, int loop, double arc, double move, int v, double min_edge,
-                 const std::vector<std::vector<int>>& faces, std::vector<Eigen::Vector3d>* position, std::vector<QuadMeshVertex>* origin,
-                 std::vector<bool>* pinned) {
+namespace {
+
+// SlideToKink's move with its own floor for the edges at v: none may end shorter than
+// min(floor, what it had).
+bool SlideAlong(const ReferenceBoundary& boundary, int loop, double arc, double move, int v, double floor,
+                const std::vector<std::vector<int>>& faces, std::vector<Eigen::Vector3d>* position,
+                std::vector<QuadMeshVertex>* origin, std::vector<bool>* pinned) {
   if ((*pinned)[v]) return false;
   std::vector<std::vector<int>> at_v;  // the faces at v (a linear scan: slides are few)
   for (const auto& face : faces)
@@ -184,13 +189,46 @@ bool SlideToKink(const ReferenceBoundary& boundary, int loop, double arc, double
   const QuadMeshVertex slid = boundary.PointAt(loop, arc + move, &p);
   (*position)[v] = p;
   if (shape.SmallestAngle(v) < std::min(angle_before, kGoodAngle) - kKinkAngleSlack ||
-      shape.ShortestEdge(v) < std::min({edge_before, min_edge, std::abs(move)})) {
+      shape.ShortestEdge(v) < std::min(edge_before, floor)) {
     (*position)[v] = old_position;
     return false;
   }
   (*origin)[v] = slid;
   (*pinned)[v] = true;
   return true;
+}
+
+}  // namespace
+
+bool SlideToKink(const ReferenceBoundary& boundary, int loop, double arc, double move, int v, double min_edge,
+                 const std::vector<std::vector<int>>& faces, std::vector<Eigen::Vector3d>* position, std::vector<QuadMeshVertex>* origin,
+                 std::vector<bool>* pinned) {
+  return SlideAlong(boundary, loop, arc, move, v, std::min(min_edge, std::abs(move)), faces, position, origin, pinned);
+}
+
+std::vector<int> WidenChord(const ReferenceBoundary& boundary, int loop, const Span& span, int a, int b, double back,
+                            double forward, double max_slide, double min_edge, const std::vector<std::vector<int>>& faces,
+                            std::vector<Eigen::Vector3d>* position, std::vector<QuadMeshVertex>* origin,
+                            std::vector<bool>* pinned) {
+  const int first = span.a_first ? a : b, last = span.a_first ? b : a;
+  // A pinned end (a corner, an inserted vertex, one slid to a kink) leaves its share to the other.
+  if ((*pinned)[first]) forward += back, back = 0.0;
+  if ((*pinned)[last]) back += forward, forward = 0.0;
+  if ((back > 0.0 && (*pinned)[first]) || (forward > 0.0 && (*pinned)[last]) || back > max_slide || forward > max_slide)
+    return {};
+  const std::vector<std::tuple<int, double, double>> moves = {{first, span.from, -back}, {last, span.from + span.span, forward}};
+  std::vector<int> moved;
+  const std::vector<Eigen::Vector3d> old_position = *position;
+  const std::vector<QuadMeshVertex> old_origin = *origin;
+  for (const auto& [v, arc, move] : moves) {
+    if (move == 0.0) continue;
+    if (!SlideAlong(boundary, loop, arc, move, v, min_edge, faces, position, origin, pinned)) {
+      for (const int w : moved) (*position)[w] = old_position[w], (*origin)[w] = old_origin[w], (*pinned)[w] = false;
+      return {};
+    }
+    moved.push_back(v);
+  }
+  return moved;
 }
 
 int SnapToSharpKinks(const ReferenceBoundary& boundary, double min_turn, double min_edge,

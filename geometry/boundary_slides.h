@@ -63,6 +63,18 @@ bool SlideToKink(const ReferenceBoundary& boundary, int loop, double arc, double
                  const std::vector<std::vector<int>>& faces, std::vector<Eigen::Vector3d>* position, std::vector<QuadMeshVertex>* origin,
                  std::vector<bool>* pinned);
 
+// The chord a – b (its boundary `span`) lengthened: the end at span.from moves `back` along the
+// boundary away from the other, the other end `forward` (a pinned end's share goes to the
+// other), so that the pieces it is then cut into are no shorter than min_edge. All or none, each
+// at most max_slide and as SlideToKink accepts the shape, but with no edge at it ending shorter
+// than min(min_edge, what it had). Returns the vertices moved (pinned), none if it could not.
+// (The corpus' two openings: a pentagon's chord 0.38 h long cut into two 0.19 h pieces.)
+inline constexpr double kRoomFactor = 1.02;  // pieces aimed at this × min_edge of arc: a chord is shorter than its arc
+std::vector<int> WidenChord(const ReferenceBoundary& boundary, int loop, const Span& span, int a, int b, double back,
+                            double forward, double max_slide, double min_edge, const std::vector<std::vector<int>>& faces,
+                            std::vector<Eigen::Vector3d>* position, std::vector<QuadMeshVertex>* origin,
+                            std::vector<bool>* pinned);
+
 // A kink of the reference boundary that turns by θ with min_edge · sin(θ/2) > tolerance (5.7°
 // at the defaults) is followed within tolerance only by chords shorter than min_edge on one
 // side of it, unless a mesh vertex sits at it: the corpus's openings are polygons with 21°

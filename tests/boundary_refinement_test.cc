@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "geometry/boundary_refinement.h"
+#include "geometry/boundary_slides.h"
 #include "geometry/reference_boundary.h"
 #include "tests/extraction_test_helpers.h"
 #include "tests/test_meshes.h"
@@ -31,6 +32,15 @@ int FacesWithThreeBoundaryVerticesInARow(const ExtractedMesh& out) {
     count += found;
   }
   return count;
+}
+
+// How far the chord a – b strays from the reference boundary between its ends (one loop, the
+// shorter way round).
+double ChordOff(const ReferenceBoundary& boundary, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const auto la = boundary.Locate(a), lb = boundary.Locate(b);
+  const double length = boundary.length(0), span = std::fmod(lb.arc - la.arc + length, length);
+  return span < 0.5 * length ? boundary.ChordDeviation(a, b, 0, la.arc, span)
+                             : boundary.ChordDeviation(b, a, 0, lb.arc, length - span);
 }
 
 // A rotated grid on a disk of radius 10 with h = 2: boundary chords of up to ~2.8 m stand
@@ -255,6 +265,15 @@ TEST(BoundaryRefinement, ACrossingNextToANewBoundaryPointMovesOntoIt) {
   }
 }
 
+// The boundary vertex of the radius-10 disk nearest the rim point at `degrees`.
+Eigen::Vector3d NearestOnRim(const SurfaceModel& s, double degrees) {
+  const Eigen::Vector3d target(10.0 * std::cos(degrees * M_PI / 180.0), 10.0 * std::sin(degrees * M_PI / 180.0), 0.0);
+  int best = -1;
+  for (int v = 0; v < s.num_vertices(); ++v)
+    if (s.is_boundary(v) && (best < 0 || (s.position(v) - target).norm() < (s.position(best) - target).norm())) best = v;
+  return s.position(best);
+}
+
 // A chord just beyond tolerance on a quad cell, whose halves would be shorter than min_edge:
 // instead of a vertex (a triangle more and two short edges) one end slides until the chord is
 // within tolerance (ShortenChord). Flat disk of radius 10, A and B its boundary vertices nearest
@@ -266,19 +285,8 @@ TEST(BoundaryRefinement, AChordWithTooShortPiecesOnAQuadIsShortenedInstead) {
   const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
   const ReferenceBoundary boundary(s);
   const double tolerance = 0.04;
-  const auto nearest = [&](double degrees) {
-    const Eigen::Vector3d target(10.0 * std::cos(degrees * M_PI / 180.0), 10.0 * std::sin(degrees * M_PI / 180.0), 0.0);
-    int best = -1;
-    for (int v = 0; v < s.num_vertices(); ++v)
-      if (s.is_boundary(v) && (best < 0 || (s.position(v) - target).norm() < (s.position(best) - target).norm())) best = v;
-    return s.position(best);
-  };
-  const auto deviation = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    const auto la = boundary.Locate(a), lb = boundary.Locate(b);
-    const double length = boundary.length(0), span = std::fmod(lb.arc - la.arc + length, length);
-    return span < 0.5 * length ? boundary.ChordDeviation(a, b, 0, la.arc, span)
-                               : boundary.ChordDeviation(b, a, 0, lb.arc, length - span);
-  };
+  const auto nearest = [&](double degrees) { return NearestOnRim(s, degrees); };
+  const auto deviation = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return ChordOff(boundary, a, b); };
   for (const double min_edge : {1.2, 0.5}) {
     const std::vector<Eigen::Vector3d> position = {nearest(-5.4), nearest(5.4), Eigen::Vector3d(8.0, 1.0, 0.0),
                                                    Eigen::Vector3d(8.0, -1.0, 0.0)};
@@ -301,6 +309,53 @@ TEST(BoundaryRefinement, AChordWithTooShortPiecesOnAQuadIsShortenedInstead) {
     } else {
       EXPECT_EQ(inserted, 1);
       EXPECT_EQ(out.mesh.n_faces(), 2u);
+    }
+  }
+}
+
+// The same chord on a pentagon, whose halves would be shorter than min_edge: there the new
+// vertex makes two quads of the cell, so it is cut, but its ends first move apart along the
+// boundary until the halves are min_edge long (WidenChord; the two openings × curvature roof: a
+// 0.38 h chord cut into two 0.19 h edges). Flat disk of radius 10, A and B its boundary
+// vertices nearest ±5.4° (measured: ±6°, chord 2.09 m, beyond tolerance 0.04; halves within),
+// the pentagon [A, B, D, E, C]; min_edge 1.1: both ends slide ~0.075 m, the halves are ≥ 1.1 m,
+// two quads. Without room to slide (max_slide 0) the halves stay 1.045 m, as before.
+TEST(BoundaryRefinement, AShortChordOnAPentagonIsWidenedBeforeItIsCut) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  const double tolerance = 0.04, min_edge = 1.1;
+  const auto nearest = [&](double degrees) { return NearestOnRim(s, degrees); };
+  for (const double max_slide : {0.5, 0.0}) {
+    const std::vector<Eigen::Vector3d> position = {nearest(-5.4), nearest(5.4), Eigen::Vector3d(8.0, 1.0, 0.0),
+                                                   Eigen::Vector3d(7.5, 0.0, 0.0), Eigen::Vector3d(8.0, -1.0, 0.0)};
+    const double chord = (position[0] - position[1]).norm();
+    ASSERT_GT(chord, 1.8);
+    ASSERT_LT(chord, 2.0 * min_edge);
+    ExtractedMesh out;
+    out.mesh = BuildPolyMesh(position, {{0, 1, 2, 3, 4}}, &out.stats.rejected_faces);
+    out.origin.resize(5);
+    out.origin[0].on_boundary = out.origin[1].on_boundary = true;
+    const int inserted = RefineBoundaryChords(s, tolerance, max_slide, min_edge, &out);
+    const ExtractedMeshMetrics after = MeasureExtractedMesh(s, out, 30.0);
+    EXPECT_EQ(inserted, 1);
+    ASSERT_EQ(out.mesh.n_faces(), 2u);
+    for (const auto f : out.mesh.faces()) EXPECT_EQ(out.mesh.valence(f), 4u);
+    ExpectSimpleCounterClockwiseManifold(out.mesh);
+    const Eigen::Vector3d a = ToEigen(out.mesh.point(VertexHandle(0))), b = ToEigen(out.mesh.point(VertexHandle(1)));
+    const Eigen::Vector3d m = ToEigen(out.mesh.point(VertexHandle(5)));  // the new vertex
+    const ReferenceBoundary boundary(s);
+    EXPECT_LE(ChordOff(boundary, a, m), tolerance + 1e-9);
+    EXPECT_LE(ChordOff(boundary, m, b), tolerance + 1e-9);
+    EXPECT_GT(ChordOff(boundary, a, b), tolerance);  // the widened chord still needed its vertex
+    if (max_slide > 0.0) {
+      EXPECT_EQ(out.stats.slid_boundary_vertices, 2);
+      EXPECT_GE(after.edge_min, min_edge);
+      EXPECT_NEAR((a - b).norm(), 2.0 * boundary_internal::kRoomFactor * min_edge, 0.01);
+      EXPECT_NEAR(a.norm(), 10.0, 0.01);
+      EXPECT_NEAR(b.norm(), 10.0, 0.01);
+      EXPECT_NEAR(a.y(), -b.y(), 1e-6);  // both moved alike
+    } else {
+      EXPECT_EQ(out.stats.slid_boundary_vertices, 0);
+      EXPECT_NEAR(after.edge_min, 0.5 * chord, 0.01);
     }
   }
 }
