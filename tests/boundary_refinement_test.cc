@@ -319,12 +319,13 @@ TEST(BoundaryRefinement, AChordWithTooShortPiecesOnAQuadIsShortenedInstead) {
 // 0.38 h chord cut into two 0.19 h edges). Flat disk of radius 10, A and B its boundary
 // vertices nearest ±5.4° (measured: ±6°, chord 2.09 m, beyond tolerance 0.04; halves within),
 // the pentagon [A, B, D, E, C]; min_edge 1.1: both ends slide ~0.075 m, the halves are ≥ 1.1 m,
-// two quads. Without room to slide (max_slide 0) the halves stay 1.045 m, as before.
+// two quads. Without room to slide (max_slide 0) the halves stay 1.045 m, as before. With A or
+// B a corner (pinned), the other slides alone, twice as far.
 TEST(BoundaryRefinement, AShortChordOnAPentagonIsWidenedBeforeItIsCut) {
   const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
   const double tolerance = 0.04, min_edge = 1.1;
   const auto nearest = [&](double degrees) { return NearestOnRim(s, degrees); };
-  for (const double max_slide : {0.5, 0.0}) {
+  for (const auto& [max_slide, corner] : {std::pair{0.5, -1}, {0.0, -1}, {0.5, 0}, {0.5, 1}}) {
     const std::vector<Eigen::Vector3d> position = {nearest(-5.4), nearest(5.4), Eigen::Vector3d(8.0, 1.0, 0.0),
                                                    Eigen::Vector3d(7.5, 0.0, 0.0), Eigen::Vector3d(8.0, -1.0, 0.0)};
     const double chord = (position[0] - position[1]).norm();
@@ -334,6 +335,7 @@ TEST(BoundaryRefinement, AShortChordOnAPentagonIsWidenedBeforeItIsCut) {
     out.mesh = BuildPolyMesh(position, {{0, 1, 2, 3, 4}}, &out.stats.rejected_faces);
     out.origin.resize(5);
     out.origin[0].on_boundary = out.origin[1].on_boundary = true;
+    if (corner >= 0) out.origin[corner].corner = true;
     const int inserted = RefineBoundaryChords(s, tolerance, max_slide, min_edge, &out);
     const ExtractedMeshMetrics after = MeasureExtractedMesh(s, out, 30.0);
     EXPECT_EQ(inserted, 1);
@@ -347,17 +349,43 @@ TEST(BoundaryRefinement, AShortChordOnAPentagonIsWidenedBeforeItIsCut) {
     EXPECT_LE(ChordOff(boundary, m, b), tolerance + 1e-9);
     EXPECT_GT(ChordOff(boundary, a, b), tolerance);  // the widened chord still needed its vertex
     if (max_slide > 0.0) {
-      EXPECT_EQ(out.stats.slid_boundary_vertices, 2);
+      EXPECT_EQ(out.stats.slid_boundary_vertices, corner >= 0 ? 1 : 2);
       EXPECT_GE(after.edge_min, min_edge);
       EXPECT_NEAR((a - b).norm(), 2.0 * boundary_internal::kRoomFactor * min_edge, 0.01);
       EXPECT_NEAR(a.norm(), 10.0, 0.01);
       EXPECT_NEAR(b.norm(), 10.0, 0.01);
-      EXPECT_NEAR(a.y(), -b.y(), 1e-6);  // both moved alike
+      if (corner == 0) EXPECT_EQ(a, position[0]);  // pinned: the other end took its share
+      if (corner == 1) EXPECT_EQ(b, position[1]);
+      if (corner < 0) EXPECT_NEAR(a.y(), -b.y(), 1e-6);  // both moved alike
     } else {
       EXPECT_EQ(out.stats.slid_boundary_vertices, 0);
       EXPECT_NEAR(after.edge_min, 0.5 * chord, 0.01);
     }
   }
+}
+
+// All or none: the pentagon above with A's neighbour C on the rim 0.03 m beyond it, in the quad
+// [C, A, X, Y] next door. B slides first; A cannot follow (it would pass C: the quad's corner
+// turns inside out), so B goes back where it was and nothing has moved.
+TEST(BoundaryRefinement, AWidenedChordMovesBothEndsOrNeither) {
+  const SurfaceModel s(GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.7));
+  const double tolerance = 0.04, min_edge = 1.1;
+  const Eigen::Vector3d a = NearestOnRim(s, -5.4), b = NearestOnRim(s, 5.4), beyond = NearestOnRim(s, -10.0);
+  // A, B, D, E, X, C, Y
+  const std::vector<Eigen::Vector3d> position = {a, b, Eigen::Vector3d(8.0, 1.0, 0.0), Eigen::Vector3d(7.5, 0.0, 0.0),
+                                                 Eigen::Vector3d(8.5, -1.5, 0.0), a + 0.03 * (beyond - a).normalized(),
+                                                 Eigen::Vector3d(8.0, -2.6, 0.0)};
+  ExtractedMesh out;
+  out.mesh = BuildPolyMesh(position, {{0, 1, 2, 3, 4}, {5, 0, 4, 6}}, &out.stats.rejected_faces);
+  ASSERT_EQ(out.mesh.n_faces(), 2u);
+  out.origin.resize(7);
+  out.origin[0].on_boundary = out.origin[1].on_boundary = out.origin[5].on_boundary = true;
+  RefineBoundaryChords(s, tolerance, 0.5, min_edge, &out);
+  EXPECT_EQ(out.stats.slid_boundary_vertices, 0);
+  EXPECT_EQ(ToEigen(out.mesh.point(VertexHandle(0))), a);
+  EXPECT_EQ(ToEigen(out.mesh.point(VertexHandle(1))), b);
+  EXPECT_EQ(out.stats.rejected_faces, 0);
+  ExpectSimpleCounterClockwiseManifold(out.mesh);
 }
 
 }  // namespace
