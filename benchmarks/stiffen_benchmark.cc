@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "problems/grid_frame.h"
-#include "solver/cholmod_solver.h"
+#include "solver/block_cholesky.h"
 
 namespace pqlayout {
 namespace {
@@ -41,7 +41,7 @@ Grid DomeGrid(int n) {
 void BM_ComplianceAndGradient(benchmark::State& state) {
   const Grid g = DomeGrid(static_cast<int>(state.range(0)));
   const AnalysisOptions analysis;
-  CholmodSolver solver;
+  BlockCholesky solver;
   GridCompliance c;
   for (auto _ : state)
     if (!EvaluateGridCompliance(g.mesh, g.restraints, analysis, true, &c, &solver).ok())

@@ -23,7 +23,7 @@
 #include "problems/stiffen_problem.h"
 #include "problems/structural_checks.h"
 #include "solver/ceres_options.h"
-#include "solver/cholmod_solver.h"
+#include "solver/block_cholesky.h"
 #include "solver/cost_window.h"
 
 namespace pqlayout {
@@ -172,7 +172,7 @@ class Objective final : public ceres::FirstOrderFunction {
   ceres::Problem::EvaluateOptions evaluate_options_;
   std::vector<bool> joint_edges_;
   mutable double last_ratio_ = 1.0;
-  mutable CholmodSolver solver_;  // keeps the frame's symbolic analysis across evaluations
+  mutable BlockCholesky solver_;  // keeps the frame's symbolic analysis across evaluations
 };
 
 bool Objective::Evaluate(const double* z, double* cost, double* gradient) const {

@@ -1,11 +1,12 @@
 #include "solver/frame_analysis.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include <Eigen/SparseCore>
 
-#include "solver/cholmod_solver.h"
+#include "solver/block_cholesky.h"
 
 namespace pqlayout {
 
@@ -61,7 +62,7 @@ Status CheckModel(const FrameModel& m) {
 
 }  // namespace
 
-Status AssembleFrame(const FrameModel& m, FrameSystem* s) {
+Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof) {
   PQ_RETURN_IF_ERROR(CheckModel(m));
   const int n = static_cast<int>(m.nodes.size());
   s->index.assign(6 * n, -1);
@@ -69,8 +70,12 @@ Status AssembleFrame(const FrameModel& m, FrameSystem* s) {
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 6; ++d)
       if (m.restraints.empty() || !m.restraints[i][d]) s->index[6 * i + d] = s->free++;
+  s->every_dof = every_dof;
+  // The row and column of DOF k in K: its free number, or k itself over every DOF (−1: left out).
+  const auto place = [&](int k) { return s->index[k] < 0 ? -1 : every_dof ? k : s->index[k]; };
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(144 * m.members.size());
+  triplets.reserve(144 * m.members.size() + (every_dof ? 6 * n : 0));
+  double diagonal_max = 0.0;
   s->member_k.resize(m.members.size()), s->member_t.resize(m.members.size());
   for (size_t e = 0; e < m.members.size(); ++e) {
     const auto& mb = m.members[e];
@@ -79,60 +84,58 @@ Status AssembleFrame(const FrameModel& m, FrameSystem* s) {
     s->member_k[e] = LocalBeamStiffness<double>(L, m.section, m.material);
     const Eigen::Matrix<double, 12, 12> K = s->member_t[e].transpose() * s->member_k[e] * s->member_t[e];
     int dofs[12];
-    for (int k = 0; k < 6; ++k) dofs[k] = 6 * mb.a + k, dofs[6 + k] = 6 * mb.b + k;
+    for (int k = 0; k < 6; ++k) dofs[k] = place(6 * mb.a + k), dofs[6 + k] = place(6 * mb.b + k);
     for (int p = 0; p < 12; ++p)
       for (int q = 0; q < 12; ++q)
-        if (s->index[dofs[p]] >= 0 && s->index[dofs[q]] >= 0)
-          triplets.emplace_back(s->index[dofs[p]], s->index[dofs[q]], K(p, q));
+        if (dofs[p] >= 0 && dofs[q] >= 0) triplets.emplace_back(dofs[p], dofs[q], K(p, q));
+    diagonal_max = std::max(diagonal_max, K.diagonal().cwiseAbs().maxCoeff());
   }
-  s->K.resize(s->free, s->free);
+  // Over every DOF, a restrained one is its own row: the identity at the members' largest
+  // diagonal entry (it then neither moves nor sets the factor's condition estimate).
+  if (every_dof)
+    for (int k = 0; k < 6 * n; ++k)
+      if (s->index[k] < 0) triplets.emplace_back(k, k, diagonal_max);
+  const int size = every_dof ? 6 * n : s->free;
+  s->K.resize(size, size);
   s->K.setFromTriplets(triplets.begin(), triplets.end());
   return Status::Ok();
 }
 
-Status SolveFrame(const FrameModel& m, FrameResult* r, CholmodSolver* reuse) {
+Status SolveFrame(const FrameModel& m, FrameResult* r, BlockCholesky* reuse) {
   FrameSystem system;
-  PQ_RETURN_IF_ERROR(AssembleFrame(m, &system));
+  PQ_RETURN_IF_ERROR(AssembleFrame(m, &system, true));
   const int n = static_cast<int>(m.nodes.size());
   const std::vector<int>& index = system.index;
-  const int free = system.free;
   const auto& member_k = system.member_k;
   const auto& member_t = system.member_t;
-  const Eigen::SparseMatrix<double>& K = system.K;
   Eigen::VectorXd f_full = Eigen::VectorXd::Zero(6 * n);
   for (int i = 0; i < n && !m.loads.empty(); ++i) f_full.segment<6>(6 * i) = m.loads[i];
-  Eigen::VectorXd f(free);
+  Eigen::VectorXd f = f_full;  // a load on a restrained DOF goes to the support: its row is the identity
   for (int k = 0; k < 6 * n; ++k)
-    if (index[k] >= 0) f[index[k]] = f_full[k];
+    if (index[k] < 0) f[k] = 0.0;
 
-  CholmodSolver own;
-  CholmodSolver& solver = reuse != nullptr ? *reuse : own;
-  const Status factored = solver.Factorize(K, reuse != nullptr);
-  auto unsupported = [&](int row, const std::string& why) {
-    int node = -1, dof = -1;
-    for (int k = 0; k < 6 * n; ++k)
-      if (index[k] == row) node = k / 6, dof = k % 6;
-    return Status::InvalidInput("the frame is a mechanism (" + why + "): node " + std::to_string(node) + " (" +
-                                (dof >= 0 ? DofName(dof) : "?") +
+  BlockCholesky own;
+  BlockCholesky& solver = reuse != nullptr ? *reuse : own;
+  const Status factored = solver.Factorize(system.K);
+  auto unsupported = [&](int row, bool whole_node, const std::string& why) {
+    return Status::InvalidInput("the frame is a mechanism (" + why + "): node " + std::to_string(row / 6) + " (" +
+                                (whole_node ? "?" : DofName(row % 6)) +
                                 ") belongs to a part that the supports do not hold; check boundary.default / boundary.rules");
   };
   if (!factored.ok()) {
-    if (solver.failed_row() >= 0) return unsupported(solver.failed_row(), "singular stiffness");
+    if (solver.failed_row() >= 0) return unsupported(solver.failed_row(), true, "singular stiffness");
     return factored;
   }
-  Eigen::VectorXd u_free;
-  PQ_RETURN_IF_ERROR(solver.Solve(f, &u_free));
-  if (solver.rcond() < 1e-13 || !u_free.allFinite()) {
+  Eigen::VectorXd u;
+  PQ_RETURN_IF_ERROR(solver.Solve(f, &u));
+  if (solver.rcond() < 1e-13 || !u.allFinite()) {
     // Nearly singular: report the DOF that moves most.
     int row = 0;
-    u_free.cwiseAbs().maxCoeff(&row);
+    u.cwiseAbs().maxCoeff(&row);
     std::ostringstream why;
     why << "reciprocal condition number " << solver.rcond();
-    return unsupported(row, why.str());
+    return unsupported(row, false, why.str());
   }
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(6 * n);
-  for (int k = 0; k < 6 * n; ++k)
-    if (index[k] >= 0) u[k] = u_free[index[k]];
 
   // Reactions: what the supports must add so that K u = f + R holds at every DOF.
   Eigen::VectorXd internal = Eigen::VectorXd::Zero(6 * n);

@@ -53,19 +53,24 @@ struct FrameResult {
 // Names a DOF for messages: "u_x", ..., "θ_z".
 const char* DofName(int dof);
 
-// A frame's free DOFs and its stiffness matrix over them (SolveFrame's; the buckling solve's).
+// A frame's free DOFs and its stiffness matrix (SolveFrame's; the buckling solve's).
 struct FrameSystem {
   std::vector<int> index;  // per DOF (6 · node + d): its number among the free DOFs, −1 where restrained
   int free = 0;
+  // Over the free DOFs (index), or with every_dof over all 6 per node (row 6 · node + d), a
+  // restrained DOF's row and column then the identity times the members' largest diagonal entry.
   Eigen::SparseMatrix<double> K;
+  bool every_dof = false;
   std::vector<Eigen::Matrix<double, 12, 12>> member_k, member_t;  // per member: local stiffness, T (local = T world)
 };
 // Checks the model (InvalidInput naming the member) and assembles K.
-Status AssembleFrame(const FrameModel& model, FrameSystem* system);
+Status AssembleFrame(const FrameModel& model, FrameSystem* system, bool every_dof = false);
 
-class CholmodSolver;
-// reuse (optional): a solver kept across calls; a stiffness matrix with the previous call's
-// sparsity pattern (same members and supports) then keeps CHOLMOD's symbolic analysis.
-Status SolveFrame(const FrameModel& model, FrameResult* result, CholmodSolver* reuse = nullptr);
+class BlockCholesky;
+// Factors K over every DOF in 6 × 6 node blocks (solver/block_cholesky.h: 3–4× CHOLMOD's
+// simplicial factor on these frames, the same bits on every machine). reuse (optional): a
+// factorisation kept across calls; a frame with the previous call's members and supports then
+// keeps its symbolic analysis.
+Status SolveFrame(const FrameModel& model, FrameResult* result, BlockCholesky* reuse = nullptr);
 
 }  // namespace pqlayout
