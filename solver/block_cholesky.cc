@@ -74,6 +74,13 @@ Status BlockCholesky::Factorize(const Eigen::SparseMatrix<double>& A) {
     return Status::InvalidInput("block Cholesky: the matrix is " + std::to_string(A.rows()) + " × " +
                                 std::to_string(A.cols()) + ", not square in 6 × 6 blocks");
   if (!A.isCompressed()) return Status::InvalidInput("block Cholesky: the matrix is not compressed");
+  for (int col = 0; col < A.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it)
+      if (!std::isfinite(it.value())) {
+        failed_row_ = static_cast<int>(it.row());
+        return Status::InvalidInput("block Cholesky: entry (" + std::to_string(it.row()) + ", " + std::to_string(col) +
+                                    ") is not finite");
+      }
   // The same scalar pattern as the last analysis (compared as stored: cheap): its analysis holds.
   const int nodes = static_cast<int>(A.rows()) / kBlock;
   const std::vector<int> outer(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);

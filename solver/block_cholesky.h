@@ -28,7 +28,8 @@ class BlockCholesky {
   using Block = Eigen::Matrix<double, kBlock, kBlock>;
 
   // Analyses A's node pattern (A: 6n × 6n, compressed, both triangles stored) unless A has the
-  // scalar pattern of the last analysis, then factors A. InvalidInput if A is not square of a multiple of 6 rows;
+  // scalar pattern of the last analysis, then factors A. InvalidInput if A is not square of a
+  // multiple of 6 rows or has an entry that is not finite (failed_row() its row);
   // Internal if it is not positive definite (failed_row() then names the first row of the node
   // block that failed, in A's numbering).
   Status Factorize(const Eigen::SparseMatrix<double>& A);

@@ -123,7 +123,8 @@ Status SolveFrame(const FrameModel& m, FrameResult* r, BlockCholesky* reuse) {
                                 ") belongs to a part that the supports do not hold; check boundary.default / boundary.rules");
   };
   if (!factored.ok()) {
-    if (solver.failed_row() >= 0) return unsupported(solver.failed_row(), true, "singular stiffness");
+    if (factored.code() == StatusCode::kInternal && solver.failed_row() >= 0)
+      return unsupported(solver.failed_row(), true, "singular stiffness");
     return factored;
   }
   Eigen::VectorXd u;

@@ -111,6 +111,11 @@ TEST(BlockCholesky, NamesTheNodeBlockThatIsNotPositiveDefinite) {
   Eigen::VectorXd x;
   EXPECT_FALSE(solver.Solve(Eigen::VectorXd::Ones(A.rows()), &x).ok());
   EXPECT_FALSE(solver.Factorize(Eigen::SparseMatrix<double>(7, 7)).ok());  // not in 6 × 6 blocks
+  Eigen::SparseMatrix<double> B = RandomBlockMatrix(10, 3);
+  B.coeffRef(13, 13) = std::nan("");
+  const Status refused = solver.Factorize(B);
+  EXPECT_EQ(refused.code(), StatusCode::kInvalidInput);
+  EXPECT_EQ(solver.failed_row(), 13);
 }
 
 // A ribbed dome's frame (20 rings of 48 nodes, 5,473 free DOFs): the same displacements as
