@@ -83,12 +83,14 @@ Status BlockCholesky::Factorize(const Eigen::SparseMatrix<double>& A) {
       }
   // The same scalar pattern as the last analysis (compared as stored: cheap): its analysis holds.
   const int nodes = static_cast<int>(A.rows()) / kBlock;
-  const std::vector<int> outer(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
-  const std::vector<int> inner(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-  if (nodes != nodes_ || outer != outer_ || inner != inner_) {
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  if (nodes != nodes_ || outer_.size() != static_cast<size_t>(A.outerSize()) + 1 ||
+      inner_.size() != static_cast<size_t>(A.nonZeros()) || !std::equal(outer_.begin(), outer_.end(), outer) ||
+      !std::equal(inner_.begin(), inner_.end(), inner)) {
     nodes_ = nodes;
-    outer_ = outer;
-    inner_ = inner;
+    outer_.assign(outer, outer + A.outerSize() + 1);
+    inner_.assign(inner, inner + A.nonZeros());
     pattern_ = NodePattern(A, nodes);
     Analyze();
   }

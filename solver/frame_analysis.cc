@@ -70,7 +70,6 @@ Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof) {
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 6; ++d)
       if (m.restraints.empty() || !m.restraints[i][d]) s->index[6 * i + d] = s->free++;
-  s->every_dof = every_dof;
   // The row and column of DOF k in K: its free number, or k itself over every DOF (−1: left out).
   const auto place = [&](int k) { return s->index[k] < 0 ? -1 : every_dof ? k : s->index[k]; };
   std::vector<Eigen::Triplet<double>> triplets;

@@ -57,10 +57,9 @@ const char* DofName(int dof);
 struct FrameSystem {
   std::vector<int> index;  // per DOF (6 · node + d): its number among the free DOFs, −1 where restrained
   int free = 0;
-  // Over the free DOFs (index), or with every_dof over all 6 per node (row 6 · node + d), a
-  // restrained DOF's row and column then the identity times the members' largest diagonal entry.
+  // Over the free DOFs (index), or, assembled with every_dof, over all 6 per node (row 6 · node +
+  // d), a restrained DOF's row and column then the identity times the members' largest diagonal entry.
   Eigen::SparseMatrix<double> K;
-  bool every_dof = false;
   std::vector<Eigen::Matrix<double, 12, 12>> member_k, member_t;  // per member: local stiffness, T (local = T world)
 };
 // Checks the model (InvalidInput naming the member) and assembles K.
