@@ -116,6 +116,7 @@ Status OutputFiles::Open(const std::string& final_dir, std::unique_ptr<OutputFil
 
 OutputFiles::~OutputFiles() {
   std::error_code ec;
+  (void)writer_.Wait();  // a failed run's writes end before their folder is removed
   if (committed_) return;
   fs::remove_all(staging_dir_, ec);
   for (const auto& dir : created_parents_) fs::remove(dir, ec);  // only if empty
@@ -133,6 +134,7 @@ Status OutputFiles::WriteText(const std::string& relative, const std::string& co
 }
 
 Status OutputFiles::Commit() {
+  PQ_RETURN_IF_ERROR(InFinalFolder(WaitForWrites()));
   PQ_RETURN_IF_ERROR(CheckInterrupt());
   std::error_code ec;
   fs::create_directories(final_dir_, ec);

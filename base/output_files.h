@@ -32,10 +32,13 @@
 // step with it.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "base/background_writer.h"
 #include "base/status.h"
 
 namespace pqlayout {
@@ -45,11 +48,16 @@ class OutputFiles {
   // Prepares staging for final_dir (creates final_dir's parent folders if needed) and removes
   // stale staging folders of final_dir left by processes that no longer exist.
   static Status Open(const std::string& final_dir, std::unique_ptr<OutputFiles>* out);
-  ~OutputFiles();  // removes the staging folder unless committed
+  ~OutputFiles();  // waits for the background writes, removes the staging folder unless committed
 
   // Where to write `relative` (e.g. "fields/faces.csv"); its folders are created.
   std::string Path(const std::string& relative);
   Status WriteText(const std::string& relative, const std::string& content);
+  // Runs `write` (it writes files under paths from Path, taken before it is added, and owns
+  // what it reads) on the background writer (base/background_writer.h); a failure comes back
+  // from WaitForWrites, which Commit calls first.
+  void WriteInBackground(std::function<Status()> write) { writer_.Add(std::move(write)); }
+  Status WaitForWrites() { return writer_.Wait(); }
   // Moves every staged entry into the output folder (protocol above). Refuses, leaving the
   // folder as it was, if SIGINT/SIGTERM has been received (base/interrupt.h); once
   // started it runs to the end.
@@ -68,6 +76,7 @@ class OutputFiles {
   std::string final_dir_, staging_dir_;
   std::vector<std::string> created_parents_;  // made by Open, removed again unless committed
   bool committed_ = false;
+  BackgroundWriter writer_;  // waited for by the destructor's body, before the staging folder goes
 };
 
 }  // namespace pqlayout

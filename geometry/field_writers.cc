@@ -41,18 +41,25 @@ void AppendVectors(std::string* s, const std::vector<Eigen::Vector3d>& values) {
 
 Status WriteFieldsVtk(const SurfaceModel& surface, const SurfaceFields& fields, const std::string& path,
                       const Eigen::Vector3d& origin) {
-  const int nv = surface.num_vertices(), nf = surface.num_faces();
+  std::vector<Eigen::Vector3d> points(surface.num_vertices());
+  for (int v = 0; v < surface.num_vertices(); ++v) points[v] = surface.position(v) + origin;
+  std::vector<std::array<int, 3>> triangles(surface.num_faces());
+  for (int f = 0; f < surface.num_faces(); ++f) triangles[f] = surface.face_vertices(f);
+  return WriteFieldsVtk(points, triangles, fields, path);
+}
+
+Status WriteFieldsVtk(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int, 3>>& triangles,
+                      const SurfaceFields& fields, const std::string& path) {
+  const int nv = static_cast<int>(points.size()), nf = static_cast<int>(triangles.size());
   std::string s = "# vtk DataFile Version 3.0\npqlayout reference surface and fields\nBINARY\nDATASET POLYDATA\n";
   s.reserve(s.size() + 24 * static_cast<size_t>(nv) * (2 + fields.vertex_vectors.size()) +
             16 * static_cast<size_t>(nf) * (2 + fields.face_vectors.size() + fields.face_scalars.size()));
   s += "POINTS " + std::to_string(nv) + " double\n";
-  std::vector<Eigen::Vector3d> points(nv);
-  for (int v = 0; v < nv; ++v) points[v] = surface.position(v) + origin;
   AppendVectors(&s, points);
   s += "POLYGONS " + std::to_string(nf) + " " + std::to_string(4 * nf) + "\n";
   for (int f = 0; f < nf; ++f) {
     AppendBigEndian<std::int32_t>(&s, 3);
-    for (const int id : surface.face_vertices(f)) AppendBigEndian<std::int32_t>(&s, id);
+    for (const int id : triangles[f]) AppendBigEndian<std::int32_t>(&s, id);
   }
   s.push_back('\n');
   auto write_scalars = [&s](const std::string& name, const std::vector<double>& values) {

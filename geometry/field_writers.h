@@ -2,6 +2,7 @@
 // binary, double precision) and as CSV tables.
 #pragma once
 
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,10 @@ struct SurfaceFields {
 // stage's 2.8 s of field writing).
 Status WriteFieldsVtk(const SurfaceModel& surface, const SurfaceFields& fields, const std::string& path,
                       const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
+// The same from the surface's points (origin already added) and triangles: what a writer on
+// another thread holds as its own copy (base/background_writer.h).
+Status WriteFieldsVtk(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int, 3>>& triangles,
+                      const SurfaceFields& fields, const std::string& path);
 
 // A CSV table: header row of column names, then one row per element with its id first.
 // Each column is a vector of values of the same length; vector-valued columns are split

@@ -168,19 +168,20 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     if (entry.stage == Stage::kSurface && static_cast<int>(options.until) >= static_cast<int>(Stage::kStiffen))
       PQ_RETURN_IF_ERROR(CheckSupportsHoldTheFrameInPlan(state.supports));
     completed.push_back(entry.name);
+    // fields.vtk once its last input is there (pipeline/surface_fields.h), while the stages go on.
+    const Stage last_input =
+        static_cast<int>(options.until) < static_cast<int>(Stage::kLevelset) ? options.until : Stage::kLevelset;
+    if (entry.stage == last_input && config.output.fields && !state.guidance.direction.empty())
+      WriteSurfaceFieldsVtkInBackground(state, out.get());
     LOG(INFO) << entry.name << ": done in " << metrics["seconds"].get<double>() << " s";
     if (options.progress) options.progress(entry.name, "done", metrics["seconds"].get<double>());
-  }
-  if (config.output.fields && !state.guidance.direction.empty()) {
-    const auto start = std::chrono::steady_clock::now();
-    PQ_RETURN_IF_ERROR(out->InFinalFolder(WriteSurfaceFieldsVtk(state, out.get())));
-    LOG(INFO) << "fields.vtk written in " << SecondsSince(start) << " s";
   }
   (*report)["targets"] = EvaluateLayoutTargets(state, (*report)["stages"]);
   if (!(*report)["targets"]["list"].empty()) LOG(INFO) << "targets: " << LayoutTargetsSummary((*report)["targets"]);
   (*report)["run"]["completed_stages"] = completed;
   (*report)["run"]["total_seconds"] = SecondsSince(run_start);
   (*report)["warnings"] = warnings.warnings();
+  PQ_RETURN_IF_ERROR(out->InFinalFolder(out->WaitForWrites()));  // the field files, before the report that says they are there
   PQ_RETURN_IF_ERROR(out->InFinalFolder(out->WriteText("report.json", report->dump(2) + "\n")));
   PQ_RETURN_IF_ERROR(out->InFinalFolder(WriteReportHtml(*report, out.get(), View3dOf(state))));
   if (options.commit) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include "geometry/field_writers.h"
@@ -18,19 +19,32 @@ namespace pqlayout {
 
 namespace {
 
-Status WriteGuidanceOutputs(const SurfaceModel& surface, const Eigen::Vector3d& origin, const std::vector<double>& v_z,
-                            const GuidanceField& g, OutputFiles* out) {
-  std::vector<double> x(surface.num_vertices()), y(x.size()), z(x.size()), zero(x.size(), 0.0);
-  for (int v = 0; v < surface.num_vertices(); ++v) {
+// fields/vertices.csv and fields/faces.csv, written in the background (base/background_writer.h)
+// from copies of their columns.
+void WriteGuidanceOutputs(const SurfaceModel& surface, const Eigen::Vector3d& origin, const std::vector<double>& v_z,
+                          const GuidanceField& g, OutputFiles* out) {
+  const int nv = surface.num_vertices(), nf = surface.num_faces();
+  auto vertex_columns = std::make_shared<std::vector<std::vector<double>>>(6, std::vector<double>(nv, 0.0));
+  std::vector<std::vector<double>>& vc = *vertex_columns;  // x, y, z, vx, vy, vz
+  for (int v = 0; v < nv; ++v) {
     const Eigen::Vector3d p = surface.position(v) + origin;  // the file's coordinates
-    x[v] = p.x(), y[v] = p.y(), z[v] = p.z();
+    vc[0][v] = p.x(), vc[1][v] = p.y(), vc[2][v] = p.z();
   }
-  PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "x", "y", "z", "vx", "vy", "vz"}, {&x, &y, &z, &zero, &zero, &v_z},
-                                   out->Path("fields/vertices.csv")));
-  std::vector<double> dx(surface.num_faces()), dy(dx.size()), dz(dx.size());
-  for (int f = 0; f < surface.num_faces(); ++f) dx[f] = g.direction[f].x(), dy[f] = g.direction[f].y(), dz[f] = g.direction[f].z();
-  return WriteCsvTable({"id", "dx", "dy", "dz", "strain_max", "strain_min", "weight"},
-                       {&dx, &dy, &dz, &g.major, &g.minor, &g.weight}, out->Path("fields/faces.csv"));
+  vc[5] = v_z;
+  auto face_columns = std::make_shared<std::vector<std::vector<double>>>(3, std::vector<double>(nf));
+  std::vector<std::vector<double>>& fc = *face_columns;  // dx, dy, dz, strain_max, strain_min, weight
+  for (int f = 0; f < nf; ++f) fc[0][f] = g.direction[f].x(), fc[1][f] = g.direction[f].y(), fc[2][f] = g.direction[f].z();
+  fc.insert(fc.end(), {g.major, g.minor, g.weight});
+  const auto pointers = [](const std::vector<std::vector<double>>& columns) {
+    std::vector<const std::vector<double>*> p;
+    for (const auto& c : columns) p.push_back(&c);
+    return p;
+  };
+  out->WriteInBackground([vertex_columns, face_columns, pointers, vertices = out->Path("fields/vertices.csv"),
+                          faces = out->Path("fields/faces.csv")] {
+    PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "x", "y", "z", "vx", "vy", "vz"}, pointers(*vertex_columns), vertices));
+    return WriteCsvTable({"id", "dx", "dy", "dz", "strain_max", "strain_min", "weight"}, pointers(*face_columns), faces);
+  });
 }
 
 nlohmann::json SingularityMetrics(const SurfaceModel& surface, const GuidanceField& g) {
@@ -118,7 +132,7 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
             << " % of faces with weight > 0.5, " << (*metrics)["singularities"]["count"] << " singularities "
             << (*metrics)["singularities"]["by_index"].dump()
             << ", " << (*metrics)["n_sources"] << " sources (minima of the field's magnitude)";
-  if (state->config.output.fields) PQ_RETURN_IF_ERROR(WriteGuidanceOutputs(surface, state->origin, v_z, g, out));
+  if (state->config.output.fields) WriteGuidanceOutputs(surface, state->origin, v_z, g, out);
   const bool strain = options.source == "strain";
   // (The fallback's title drops "(integral curves)": the long one ran off the figure.)
   const std::string title = fallback ? "Guidance: " + options.source + "; curvature lines where weak"

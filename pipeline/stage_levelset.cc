@@ -52,8 +52,10 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   (*metrics)["poles"] = poles;
   if (!solution.rejected_poles.is_null()) (*metrics)["poles_not_kept"] = solution.rejected_poles;
   if (!solution.tip_cone.is_null()) (*metrics)["tip_cone"] = solution.tip_cone;
-  if (state->config.output.fields)
-    PQ_RETURN_IF_ERROR(WriteCsvTable({"id", "phi", "psi"}, {&solution.phi, &solution.psi}, out->Path("fields/levelsets.csv")));
+  if (state->config.output.fields)  // in the background, from copies (base/background_writer.h)
+    out->WriteInBackground([phi = solution.phi, psi = solution.psi, path = out->Path("fields/levelsets.csv")] {
+      return WriteCsvTable({"id", "phi", "psi"}, {&phi, &psi}, path);
+    });
   const auto& m = solution.metrics;
   LOG(INFO) << "levelset: alignment " << m.alignment_rms_deg << "° RMS (" << m.alignment_rms_deg_strong
             << "° where weight > 0.5), spacing CV φ " << m.spacing_cv_phi << " ψ " << m.spacing_cv_psi

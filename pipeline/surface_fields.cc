@@ -1,27 +1,42 @@
 #include "pipeline/surface_fields.h"
 
+#include <glog/logging.h>
+
+#include <chrono>
+#include <memory>
+
 #include "geometry/field_writers.h"
 
 namespace pqlayout {
 
-Status WriteSurfaceFieldsVtk(const PipelineState& state, OutputFiles* out) {
-  SurfaceModel& surface = *state.surface;
-  SurfaceFields fields;
+void WriteSurfaceFieldsVtkInBackground(const PipelineState& state, OutputFiles* out) {
+  SurfaceModel& surface = *state.surface;  // VertexFieldValues is not const
+  auto fields = std::make_shared<SurfaceFields>();
   const std::vector<double> v_z = surface.VertexFieldValues("v_z");
   std::vector<Eigen::Vector3d> displacement(surface.num_vertices());
   for (int v = 0; v < surface.num_vertices(); ++v) displacement[v] = Eigen::Vector3d(0.0, 0.0, v_z[v]);
-  fields.vertex_scalars = {{"v_z", v_z}};
-  fields.vertex_vectors = {{"displacement", displacement}};
+  fields->vertex_scalars = {{"v_z", v_z}};
+  fields->vertex_vectors = {{"displacement", std::move(displacement)}};
   const GuidanceField& g = state.guidance;
   if (!g.direction.empty()) {
-    fields.face_vectors = {{"guidance", g.direction}};
-    fields.face_scalars = {{"strain_max", g.major}, {"strain_min", g.minor}, {"magnitude", g.magnitude}, {"weight", g.weight}};
+    fields->face_vectors = {{"guidance", g.direction}};
+    fields->face_scalars = {{"strain_max", g.major}, {"strain_min", g.minor}, {"magnitude", g.magnitude}, {"weight", g.weight}};
   }
   if (!state.levelsets.phi.empty()) {
-    fields.vertex_scalars.push_back({"phi", state.levelsets.phi});
-    fields.vertex_scalars.push_back({"psi", state.levelsets.psi});
+    fields->vertex_scalars.push_back({"phi", state.levelsets.phi});
+    fields->vertex_scalars.push_back({"psi", state.levelsets.psi});
   }
-  return WriteFieldsVtk(surface, fields, out->Path("fields.vtk"), state.origin);
+  auto points = std::make_shared<std::vector<Eigen::Vector3d>>(surface.num_vertices());
+  for (int v = 0; v < surface.num_vertices(); ++v) (*points)[v] = surface.position(v) + state.origin;
+  auto triangles = std::make_shared<std::vector<std::array<int, 3>>>(surface.num_faces());
+  for (int f = 0; f < surface.num_faces(); ++f) (*triangles)[f] = surface.face_vertices(f);
+  out->WriteInBackground([fields, points, triangles, path = out->Path("fields.vtk")] {
+    const auto start = std::chrono::steady_clock::now();
+    PQ_RETURN_IF_ERROR(WriteFieldsVtk(*points, *triangles, *fields, path));
+    LOG(INFO) << "fields.vtk written in "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s (in the background)";
+    return Status::Ok();
+  });
 }
 
 }  // namespace pqlayout
