@@ -64,15 +64,24 @@ Status SolveMembrane(const SurfaceModel& surface, const VertexConditions& suppor
   solution->v_z.assign(nv, 0.0);
   if (n == 0) return Status::Ok();
 
+  // K without the Dirichlet rows and columns, copied column by column: `unknown` keeps the
+  // vertices' order, so each column's rows stay sorted and no triplet sort is needed.
   const Eigen::SparseMatrix<double> K = CotanStiffness(surface);
-  std::vector<Eigen::Triplet<double>> reduced;
-  reduced.reserve(K.nonZeros());
-  for (int col = 0; col < K.outerSize(); ++col)
+  std::vector<int> outer(n + 1, 0), inner;
+  std::vector<double> values;
+  inner.reserve(K.nonZeros());
+  values.reserve(K.nonZeros());
+  for (int col = 0; col < K.outerSize(); ++col) {
+    if (unknown[col] < 0) continue;
     for (Eigen::SparseMatrix<double>::InnerIterator it(K, col); it; ++it)
-      if (unknown[it.row()] >= 0 && unknown[it.col()] >= 0)
-        reduced.emplace_back(unknown[it.row()], unknown[it.col()], options.stiffness * it.value());
-  Eigen::SparseMatrix<double> A(n, n);
-  A.setFromTriplets(reduced.begin(), reduced.end());
+      if (unknown[it.row()] >= 0) {
+        inner.push_back(unknown[it.row()]);
+        values.push_back(options.stiffness * it.value());
+      }
+    outer[unknown[col] + 1] = static_cast<int>(inner.size());
+  }
+  const Eigen::SparseMatrix<double> A =
+      Eigen::Map<const Eigen::SparseMatrix<double>>(n, n, static_cast<int>(inner.size()), outer.data(), inner.data(), values.data());
   Eigen::VectorXd f(n);
   for (int v = 0; v < nv; ++v)
     if (unknown[v] >= 0) f[unknown[v]] = -q * surface.vertex_area(v);
