@@ -1,5 +1,6 @@
-// The membrane stage (assembly + CHOLMOD factor + solve) beside a bare CHOLMOD factor +
-// solve of the same reduced matrix, on curved grid meshes of 10k, 100k and 1M triangles.
+// The membrane stage (assembly + factor + solve) beside bare factors + solves of the same
+// reduced matrix (CHOLMOD with its own ordering or our nested dissection, our supernodal
+// factor), on curved grid meshes of 10k, 100k and 1M triangles.
 // Target (issue 3): stage ≤ 1.5 × bare, 1M triangles ≤ 3 s on the 2-core machine.
 #include <benchmark/benchmark.h>
 
@@ -8,6 +9,8 @@
 #include "geometry/differential_operators.h"
 #include "problems/membrane.h"
 #include "solver/cholmod_solver.h"
+#include "solver/nested_dissection.h"
+#include "solver/supernodal_cholesky.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -43,31 +46,55 @@ void BM_MembraneStage(benchmark::State& state) {
   state.counters["assemble_s"] = solution.assemble_seconds;
 }
 
-void BM_BareCholmodFactorSolve(benchmark::State& state) {
-  const SurfaceModel s = CurvedGrid(GridSizeFor(state.range(0)));
-  // The same reduced system the stage solves: interior rows and columns of λ_m K.
+// The same reduced system the stage solves: interior rows and columns of λ_m K, with the
+// interior vertices' points (for nested dissection).
+Eigen::SparseMatrix<double> ReducedSystem(const SurfaceModel& s, std::vector<Eigen::Vector3d>* points) {
   const Eigen::SparseMatrix<double> K = CotanStiffness(s);
   std::vector<int> unknown(s.num_vertices(), -1);
   int n = 0;
   for (int v = 0; v < s.num_vertices(); ++v)
-    if (!s.is_boundary(v)) unknown[v] = n++;
+    if (!s.is_boundary(v)) unknown[v] = n++, points->push_back(s.position(v));
   std::vector<Eigen::Triplet<double>> t;
   for (int col = 0; col < K.outerSize(); ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(K, col); it; ++it)
       if (unknown[it.row()] >= 0 && unknown[it.col()] >= 0) t.emplace_back(unknown[it.row()], unknown[it.col()], 1e6 * it.value());
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(t.begin(), t.end());
-  const Eigen::VectorXd b = Eigen::VectorXd::Constant(n, -1.0);
-  Eigen::VectorXd x;
-  for (auto _ : state) {
-    CholmodSolver solver;
-    if (!solver.Factorize(A).ok() || !solver.Solve(b, &x).ok()) state.SkipWithError("CHOLMOD failed");
-  }
-  state.counters["triangles"] = s.num_faces();
+  return A;
 }
 
-BENCHMARK(BM_MembraneStage)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_BareCholmodFactorSolve)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+// Factor + solve of the reduced system: CHOLMOD (simplicial) with its own ordering (arg 1 = 0)
+// or with our nested dissection (1), or our supernodal factor with nested dissection (2).
+void BM_FactorSolve(benchmark::State& state) {
+  const SurfaceModel s = CurvedGrid(GridSizeFor(state.range(0)));
+  std::vector<Eigen::Vector3d> points;
+  const Eigen::SparseMatrix<double> A = ReducedSystem(s, &points);
+  const std::vector<int> dissection = NestedDissectionOrdering(A, points);
+  const Eigen::VectorXd b = Eigen::VectorXd::Constant(A.rows(), -1.0);
+  Eigen::VectorXd x;
+  double flops = 0.0;
+  for (auto _ : state) {
+    if (state.range(1) == 2) {
+      SupernodalCholesky solver;
+      if (!solver.Factorize(A, dissection).ok() || !solver.Solve(b, &x).ok()) state.SkipWithError("failed");
+      flops = solver.flops();
+    } else {
+      CholmodSolver solver;
+      if (state.range(1) == 1) solver.SetOrdering(dissection);
+      if (!solver.Factorize(A).ok() || !solver.Solve(b, &x).ok()) state.SkipWithError("CHOLMOD failed");
+      flops = solver.factor_flops();
+    }
+  }
+  state.counters["triangles"] = s.num_faces();
+  state.counters["flops"] = flops;
+}
 
 }  // namespace
 }  // namespace pqlayout
+
+BENCHMARK(pqlayout::BM_MembraneStage)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(pqlayout::BM_FactorSolve)
+    ->ArgsProduct({{10000, 100000, 1000000}, {0, 1, 2}})
+    ->ArgNames({"triangles", "factor"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();

@@ -16,7 +16,7 @@ Status RunMembraneStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   SurfaceModel& surface = *state->surface;
   MembraneSolution solution;
   LOG(INFO) << "membrane: assembling and factoring the stiffness on " << surface.num_vertices()
-            << " vertices (CHOLMOD) ...";  // ~4 s at a million triangles
+            << " vertices ...";  // ~4 s at a million triangles
   PQ_RETURN_IF_ERROR(SolveMembrane(surface, state->supports, state->config.membrane, state->config.load.q, &solution));
   auto v_z = surface.VertexField<double>("v_z");
   double max_abs = 0.0, min_v = 0.0;
@@ -33,6 +33,7 @@ Status RunMembraneStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
               {"assemble_seconds", solution.assemble_seconds},
               {"factor_seconds", solution.factor_seconds},
               {"ordering", solution.ordering},
+              {"factor", solution.factor},
               {"factor_flops", solution.factor_flops},
               {"solve_seconds", solution.solve_seconds}};
   LOG(INFO) << "membrane: " << solution.n_unknowns << " unknowns, " << solution.n_dirichlet

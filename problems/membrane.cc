@@ -8,6 +8,7 @@
 #include "problems/membrane.h"
 #include "solver/cholmod_solver.h"
 #include "solver/nested_dissection.h"
+#include "solver/supernodal_cholesky.h"
 
 namespace pqlayout {
 namespace {
@@ -22,6 +23,9 @@ double Seconds(std::chrono::steady_clock::time_point since) {
 // 4.8e9 flops, stage 7.4–8.1 → 4.1–5.2 s; 153k unknowns 1.5e9 → 8.5e8 flops. Below it (every
 // corpus roof, the default Great Court, 44k and 112k references) CHOLMOD's choice stands and
 // results are unchanged to the bit; on small regular grids AMD needs fewer flops.
+// From the same size on, the factor is our supernodal one (solver/supernodal_cholesky.h)
+// instead of CHOLMOD's simplicial one: at 479k unknowns 4.0–4.3 s → see benchmarks/RESULTS.md,
+// "The membrane's supernodal factor"; below it CHOLMOD's, so that small runs keep their bits.
 constexpr int kNestedDissectionFrom = 100000;
 
 bool IsDirichlet(const std::optional<BoundaryCondition>& c) {
@@ -88,21 +92,24 @@ Status SolveMembrane(const SurfaceModel& surface, const VertexConditions& suppor
   solution->assemble_seconds = Seconds(start);
 
   start = std::chrono::steady_clock::now();
-  CholmodSolver solver;
-  solution->ordering = "CHOLMOD";
-  if (n >= kNestedDissectionFrom) {
+  Eigen::VectorXd x;
+  const bool large = n >= kNestedDissectionFrom;
+  SupernodalCholesky supernodal;
+  CholmodSolver cholmod;
+  if (large) {
     std::vector<Eigen::Vector3d> points(n);
     for (int v = 0; v < nv; ++v)
       if (unknown[v] >= 0) points[unknown[v]] = surface.position(v);
-    solver.SetOrdering(NestedDissectionOrdering(A, points));
-    solution->ordering = "nested dissection";
+    PQ_RETURN_IF_ERROR(supernodal.Factorize(A, NestedDissectionOrdering(A, points)).WithContext("membrane"));
+  } else {
+    PQ_RETURN_IF_ERROR(cholmod.Factorize(A).WithContext("membrane"));
   }
-  PQ_RETURN_IF_ERROR(solver.Factorize(A).WithContext("membrane"));
+  solution->ordering = large ? "nested dissection" : "CHOLMOD";
+  solution->factor = large ? "supernodal multifrontal" : "CHOLMOD simplicial";
   solution->factor_seconds = Seconds(start);
-  solution->factor_flops = solver.factor_flops();
+  solution->factor_flops = large ? supernodal.flops() : cholmod.factor_flops();
   start = std::chrono::steady_clock::now();
-  Eigen::VectorXd x;
-  PQ_RETURN_IF_ERROR(solver.Solve(f, &x).WithContext("membrane"));
+  PQ_RETURN_IF_ERROR((large ? supernodal.Solve(f, &x) : cholmod.Solve(f, &x)).WithContext("membrane"));
   solution->solve_seconds = Seconds(start);
   solution->relative_residual = (A * x - f).norm() / f.norm();
   for (int v = 0; v < nv; ++v)

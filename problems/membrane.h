@@ -2,7 +2,8 @@
 // dead load. Equation (1) with λ_b = 0, −λ_m Δv = f, in P1 finite elements: the cotangent
 // stiffness λ_m K, lumped load f_i = −q A_i e_z. By the paper's maximum-principle argument
 // only v_z is non-zero, so this is one scalar sparse SPD system, factored by CHOLMOD
-// (supernodal). Boundary vertices that are `fixed`, `clamped` or `sliding` (u_z = 0 in all
+// (simplicial), or from 100k unknowns by our supernodal factor in nested-dissection order
+// (problems/membrane.cc). Boundary vertices that are `fixed`, `clamped` or `sliding` (u_z = 0 in all
 // three) are Dirichlet (v_z = 0); `free` ones are Neumann (natural).
 #pragma once
 
@@ -22,7 +23,8 @@ struct MembraneSolution {
   double relative_residual = 0.0; // ‖K v − f‖ / ‖f‖ over the unknowns
   double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0;
   std::string ordering;           // the factor's fill-reducing ordering: "CHOLMOD" or "nested dissection"
-  double factor_flops = 0.0;      // of the Cholesky factorisation (CHOLMOD's count)
+  std::string factor;             // "CHOLMOD simplicial" or "supernodal multifrontal"
+  double factor_flops = 0.0;      // of the Cholesky factorisation (CHOLMOD's count, or ours with the relaxed supernodes' zeros)
 };
 
 // InvalidInput if a connected component of the surface has no Dirichlet vertex (the

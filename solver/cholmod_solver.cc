@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/nested_dissection.h"
 #include "solver/numerics.h"
 
 namespace pqlayout {
@@ -52,13 +53,7 @@ Status CholmodSolver::Analyze(cholmod_sparse* A, long n) {
   if (perm.empty()) {
     impl_->factor = cholmod_analyze(A, c);
   } else {
-    std::vector<char> seen(n, 0);
-    bool permutation = static_cast<long>(perm.size()) == n;
-    for (size_t k = 0; permutation && k < perm.size(); ++k) {
-      permutation = perm[k] >= 0 && perm[k] < n && !seen[perm[k]];
-      if (permutation) seen[perm[k]] = 1;
-    }
-    if (!permutation)
+    if (!IsPermutation(perm, n))
       return Status::InvalidInput("the ordering given is not a permutation of the matrix's " + std::to_string(n) +
                                   " rows");
     const int methods = c->nmethods, method = c->method[0].ordering;

@@ -103,4 +103,14 @@ std::vector<int> NestedDissectionOrdering(const Eigen::SparseMatrix<double>& A,
   return Dissection(A, points).Run();
 }
 
+bool IsPermutation(const std::vector<int>& perm, long n) {
+  if (static_cast<long>(perm.size()) != n) return false;
+  std::vector<char> seen(n, 0);
+  for (const int k : perm) {
+    if (k < 0 || k >= n || seen[k]) return false;
+    seen[k] = 1;
+  }
+  return true;
+}
+
 }  // namespace pqlayout

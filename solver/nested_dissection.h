@@ -27,4 +27,7 @@ namespace pqlayout {
 std::vector<int> NestedDissectionOrdering(const Eigen::SparseMatrix<double>& A,
                                           const std::vector<Eigen::Vector3d>& points);
 
+// Whether perm holds each of 0 … n − 1 exactly once (an ordering a factor may be given).
+bool IsPermutation(const std::vector<int>& perm, long n);
+
 }  // namespace pqlayout
