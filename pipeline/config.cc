@@ -291,24 +291,35 @@ Status ApplyOverride(const std::string& assignment, KeyTable* table, std::string
   return Status::Ok();
 }
 
-// Keys that are valid one by one but not together.
-Status CheckKeysTogether(const Config& c, const std::string& source) {
-  auto refuse = [&](const std::string& message) { return Status::InvalidInput(source + ": " + message); };
+// Keys that are valid one by one but not together. The message names where the value came
+// from: `--set KEY=VALUE` for the first key of the check given on the command line (the last
+// such assignment), else the config file.
+Status CheckKeysTogether(const Config& c, const std::string& source, const std::map<std::string, std::string>& overridden) {
+  auto refuse = [&](std::initializer_list<const char*> keys, const std::string& message) {
+    for (const char* key : keys)
+      if (const auto it = overridden.find(key); it != overridden.end())
+        return Status::InvalidInput("--set " + it->second + ": " + message);
+    return Status::InvalidInput(source + ": " + message);
+  };
   if (c.guidance.source == "file" && c.guidance.file.empty())
-    return refuse("guidance.file: required when guidance.source is file");
+    return refuse({"guidance.source", "guidance.file"}, "guidance.file: required when guidance.source is file");
   const SectionOptions& section = c.analysis.section;
   const bool circular = section.shape == "circular_hollow";
   const double smallest = circular ? section.diameter : std::min(section.width, section.height);
   if (!(2.0 * section.thickness < smallest))
-    return refuse("analysis.section.thickness: " + FormatNumber(section.thickness) + " m leaves no hollow in a " +
-                  (circular ? "tube of analysis.section.diameter " : "box whose smaller side is ") +
-                  FormatNumber(smallest) + " m (it must be less than half of that)");
+    return refuse({"analysis.section.thickness", "analysis.section.shape", "analysis.section.diameter",
+                   "analysis.section.width", "analysis.section.height"},
+                  "analysis.section.thickness: " + FormatNumber(section.thickness) + " m leaves no hollow in a " +
+                      (circular ? "tube of analysis.section.diameter " : "box whose smaller side is ") +
+                      FormatNumber(smallest) + " m (it must be less than half of that)");
   if (c.levelset.joint_iterations == 0 && !c.levelset.separate_solves)
-    return refuse("levelset.joint_iterations: 0 leaves the level sets unsolved (the initial guess) unless "
+    return refuse({"levelset.joint_iterations", "levelset.separate_solves"},
+                  "levelset.joint_iterations: 0 leaves the level sets unsolved (the initial guess) unless "
                   "levelset.separate_solves is true");
   const AnalysisOptions& a = c.analysis;
   if (a.panel_load == 0.0 && a.material.density * a.gravity == 0.0)
-    return refuse("analysis.panel_load: the frame carries no load (analysis.panel_load and the steel's weight, "
+    return refuse({"analysis.panel_load", "analysis.material.density", "analysis.gravity"},
+                  "analysis.panel_load: the frame carries no load (analysis.panel_load and the steel's weight, "
                   "analysis.material.density × analysis.gravity, are both 0), so its compliance would be 0");
   return Status::Ok();
 }
@@ -342,16 +353,18 @@ Status ParseConfig(const std::string& yaml_text, const std::string& source_name,
 
   table.set_base_dir("");  // paths given on the command line are relative to the working directory
   table.set_source("--set boundary.rules", false);
+  std::map<std::string, std::string> overridden;  // key → its (last) assignment on the command line
   for (const auto& assignment : overrides) {
     std::string key;
     PQ_RETURN_IF_ERROR(ApplyOverride(assignment, &table, &key));
+    overridden[key] = assignment;
     // The surface comes from one source: setting one of the two clears the other.
     if (key == "surface.file" && !surface.file.empty()) surface.generator.clear();
     if (key == "surface.generator" && !surface.generator.empty()) surface.file.clear();
   }
   if (surface.file.empty() && surface.generator.empty())
     return Status::InvalidInput(source_name + ": surface: set surface.file or surface.generator");
-  return CheckKeysTogether(*config, source_name);
+  return CheckKeysTogether(*config, source_name, overridden);
 }
 
 Status LoadConfig(const std::string& path, const std::vector<std::string>& overrides, Config* config) {

@@ -221,6 +221,14 @@ TEST(Config, KeysThatContradictEachOtherAreRefused) {
   ExpectError("levelset:\n  joint_iterations: 0\n", {},
               "cfg.yaml: levelset.joint_iterations: 0 leaves the level sets unsolved (the initial guess) unless "
               "levelset.separate_solves is true");
+  // A contradiction made on the command line names the --set, not the file that was fine.
+  ExpectError("", {"analysis.section.thickness=0.06"},
+              "--set analysis.section.thickness=0.06: analysis.section.thickness: 0.06 m leaves no hollow");
+  ExpectError("analysis:\n  section:\n    thickness: 0.04\n", {"analysis.section.diameter=0.07"},
+              "--set analysis.section.diameter=0.07: analysis.section.thickness: 0.04 m leaves no hollow");
+  ExpectError("", {"levelset.joint_iterations=5", "levelset.joint_iterations=0"},
+              "--set levelset.joint_iterations=0: levelset.joint_iterations: 0 leaves");
+  ExpectError("guidance:\n  source: file\n", {"layout.spacing=2"}, "cfg.yaml: guidance.file: required");
   Config c;
   EXPECT_TRUE(Parse("analysis:\n  panel_load: 0\n", &c).ok());  // the steel's own weight is still a load
   EXPECT_TRUE(Parse("levelset:\n  joint_iterations: 0\n  separate_solves: true\n", &c).ok());  // φ, then ψ only
