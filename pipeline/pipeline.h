@@ -18,6 +18,7 @@
 #include "pipeline/config.h"
 #include "problems/guidance.h"
 #include "problems/levelset.h"
+#include "solver/frame_buckling.h"
 #include "base/output_files.h"
 
 namespace pqlayout {
@@ -52,6 +53,7 @@ struct PipelineState {
   ExtractedMesh shell;                    // stage stiffen: the final grid shell (= planarized when off)
   AnalysisTables analysis;                // stage analyze
   std::vector<double> normal_offset;      // stage stiffen: per shell vertex, m from the planarised mesh
+  BucklingMemo buckling_memo;             // stages stiffen and analyze: the last buckling solve
   // stage surface: every stage works in a local frame; the file's coordinates are local +
   // origin (zero unless the file is georeferenced: see stage_surface.cc), and so are those of
   // every geometry file written.

@@ -177,7 +177,8 @@ Status RunAnalyzeStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   LOG(INFO) << "analyze: steel " << frame.steel_mass / 1000.0 << " t; compliance " << r.compliance << " J (node mean "
             << mean << ", max " << max_c << "), max |u| " << max_u * 1000.0 << " mm";
   StructuralChecks checks;
-  PQ_RETURN_IF_ERROR(RunStructuralChecks(frame, r, state->config.analysis, &checks).WithContext("analyze"));
+  PQ_RETURN_IF_ERROR(RunStructuralChecks(frame, r, state->config.analysis, &checks, true, &state->buckling_memo)
+                         .WithContext("analyze"));
   metrics->update(checks.ToJson(frame));
   state->analysis = BuildAnalysisTables(*state, frame, r, per_vertex, checks.utilisation);
   PQ_RETURN_IF_ERROR(WriteColumnTable(state->analysis.nodes, out->Path("analysis/nodes.csv")));

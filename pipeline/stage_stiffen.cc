@@ -65,7 +65,7 @@ Status RunStiffenStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
   const std::vector<Restraints> restraints = VertexRestraints(state->planarized, *state->surface, state->supports);
   const auto stiffen = [&](ExtractedMesh* mesh, StiffenReport* r) {
     return StiffenMesh(*state->surface, restraints, state->config.analysis, options, target,
-                       state->config.layout.spacing, mesh, r);
+                       state->config.layout.spacing, mesh, r, &state->buckling_memo);
   };
   nlohmann::json bracing;
   if (state->config.extract.brace_free_edges == "paying") {

@@ -420,7 +420,7 @@ std::vector<Vec3> Bumped(const StiffenProblem& P, const PolyMesh& mesh, std::vec
 
 Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>& restraints,
                    const AnalysisOptions& analysis, const StiffenOptions& options, double target_delta, double h,
-                   ExtractedMesh* mesh, StiffenReport* report) {
+                   ExtractedMesh* mesh, StiffenReport* report, BucklingMemo* memo) {
   const std::vector<double> kinks = KinkAngles(mesh->mesh);
   for (const double k : kinks)
     report->kink_mean_deg_before += k / kinks.size(), report->kink_max_deg_before = std::max(report->kink_max_deg_before, k);
@@ -468,8 +468,8 @@ Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>&
   }
   if (report->iterations > 0) {  // what the reshaping did to buckling, utilisation and deflection
     StructuralChecks before, after;
-    PQ_RETURN_IF_ERROR(RunStructuralChecks(first.frame, first.result, analysis, &before, false).WithContext("stiffen"));
-    PQ_RETURN_IF_ERROR(RunStructuralChecks(last.frame, last.result, analysis, &after, false).WithContext("stiffen"));
+    PQ_RETURN_IF_ERROR(RunStructuralChecks(first.frame, first.result, analysis, &before, false, memo).WithContext("stiffen"));
+    PQ_RETURN_IF_ERROR(RunStructuralChecks(last.frame, last.result, analysis, &after, false, memo).WithContext("stiffen"));
     report->checks_before = before.ToJson(first.frame), report->checks_after = after.ToJson(last.frame);
     LOG(INFO) << "stiffen: buckling factor " << report->checks_before["buckling_factor"] << " → "
               << report->checks_after["buckling_factor"] << ", utilisation max " << report->checks_before["utilisation_max"]

@@ -59,6 +59,7 @@
 #include "geometry/surface_model.h"
 #include "problems/options.h"
 #include "solver/frame_analysis.h"
+#include "solver/frame_buckling.h"
 
 namespace pqlayout {
 
@@ -94,8 +95,10 @@ std::vector<double> KinkAngles(const PolyMesh& mesh);
 
 // Reshapes `mesh` (the planarised mesh; its origin flags say which vertices are on the
 // boundary) in place. With options.tolerance = 0 the mesh is left as it is.
+// memo (optional): the buckling checks before and after go through it (the last shell's is then
+// analyze's, solver/frame_buckling.h).
 Status StiffenMesh(const SurfaceModel& reference, const std::vector<Restraints>& vertex_restraints,
                    const AnalysisOptions& analysis, const StiffenOptions& options, double target_delta,
-                   double spacing, ExtractedMesh* mesh, StiffenReport* report);
+                   double spacing, ExtractedMesh* mesh, StiffenReport* report, BucklingMemo* memo = nullptr);
 
 }  // namespace pqlayout

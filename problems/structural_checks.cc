@@ -21,7 +21,7 @@ SectionModuli ModuliOf(const SectionOptions& s) {
 }  // namespace
 
 Status RunStructuralChecks(const GridFrame& frame, const FrameResult& r, const AnalysisOptions& a, StructuralChecks* c,
-                           bool log) {
+                           bool log, BucklingMemo* memo) {
   const FrameModel& model = frame.model;
   c->utilisation = MemberUtilisation(model, r, ModuliOf(a.section), a.material.yield_strength);
   Eigen::AlignedBox2d plan;
@@ -32,12 +32,16 @@ Status RunStructuralChecks(const GridFrame& frame, const FrameResult& r, const A
   c->span = plan.sizes().maxCoeff();
   if (a.buckling_modes > 0) {
     const auto start = std::chrono::steady_clock::now();
-    PQ_RETURN_IF_ERROR(SolveBuckling(model, r, a.buckling_modes, &c->buckling));
+    if (memo != nullptr)
+      PQ_RETURN_IF_ERROR(memo->Solve(model, r, a.buckling_modes, &c->buckling, &c->buckling_reused));
+    else
+      PQ_RETURN_IF_ERROR(SolveBuckling(model, r, a.buckling_modes, &c->buckling));
     c->buckling_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     c->buckling_run = true;
     if (log && c->buckling.buckles)
       LOG(INFO) << "analyze: buckling factor " << c->buckling.factors.front() << " (" << c->buckling.factors.size()
-                << " found, " << c->buckling.operations << " solves, " << c->buckling_seconds << " s)";
+                << " found, " << c->buckling.operations << " solves, "
+                << (c->buckling_reused ? "stiffen's, the same frame" : std::to_string(c->buckling_seconds) + " s") << ")";
     if (log && !c->buckling.buckles) LOG(INFO) << "analyze: no buckling under this load (no member is compressed enough)";
   }
   const double eta_max = c->utilisation.empty() ? 0.0 : *std::max_element(c->utilisation.begin(), c->utilisation.end());
@@ -62,6 +66,7 @@ nlohmann::json StructuralChecks::ToJson(const GridFrame& frame) const {
     j["buckling_factors"] = buckling.factors;
     j["buckling"] = buckling.buckles ? "linear buckling factor of the analysed load" : "no buckling under this load";
     j["buckling_seconds"] = buckling_seconds;
+    j["buckling_reused"] = buckling_reused;
     j["buckling_solves"] = buckling.operations;
   }
   const size_t m = utilisation.size();

@@ -25,6 +25,7 @@ namespace pqlayout {
 struct StructuralChecks {
   BucklingResult buckling;
   bool buckling_run = false;
+  bool buckling_reused = false;  // the same frame and forces as the memo's last solve: its result taken
   double buckling_seconds = 0.0;
   std::vector<double> utilisation;  // per frame member
   double deflection_max = 0.0, span = 0.0;
@@ -32,8 +33,10 @@ struct StructuralChecks {
 };
 
 // log: the results as INFO lines and a warning for members over η = 1 (analyze does; stiffen,
-// which checks the frame before and after, logs its own summary).
+// which checks the frame before and after, logs its own summary). memo (optional): the
+// buckling solve through it (solver/frame_buckling.h, BucklingMemo), so that a frame checked
+// twice, as stiffen's last shell and then by analyze, is solved once.
 Status RunStructuralChecks(const GridFrame& frame, const FrameResult& linear, const AnalysisOptions& a,
-                           StructuralChecks* checks, bool log = true);
+                           StructuralChecks* checks, bool log = true, BucklingMemo* memo = nullptr);
 
 }  // namespace pqlayout

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "solver/cholmod_solver.h"
 
@@ -121,6 +122,49 @@ Status SolveBuckling(const FrameModel& m, const FrameResult& linear, int modes, 
     r->modes.push_back(ModeShape(s, phi.col(i)));
   }
   r->buckles = !r->factors.empty();
+  return Status::Ok();
+}
+
+namespace {
+
+template <typename T>
+void AppendBytes(std::string* key, const T& value) {
+  key->append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+// The inputs of SolveBuckling as bytes (everything it reads: the loads only through N).
+std::string BucklingKey(const FrameModel& m, const FrameResult& linear, int modes) {
+  std::string key;
+  AppendBytes(&key, modes);
+  AppendBytes(&key, m.nodes.size());
+  for (const auto& p : m.nodes) AppendBytes(&key, p);
+  AppendBytes(&key, m.members.size());
+  for (const auto& member : m.members) AppendBytes(&key, member.a), AppendBytes(&key, member.b), AppendBytes(&key, member.up);
+  AppendBytes(&key, m.restraints.size());
+  for (const auto& r : m.restraints)
+    for (const bool fixed : r) AppendBytes(&key, fixed);
+  AppendBytes(&key, m.section.area), AppendBytes(&key, m.section.inertia_y), AppendBytes(&key, m.section.inertia_z);
+  AppendBytes(&key, m.section.torsion);
+  AppendBytes(&key, m.material.youngs_modulus), AppendBytes(&key, m.material.shear_modulus);
+  AppendBytes(&key, linear.axial_force.size());
+  for (const double n : linear.axial_force) AppendBytes(&key, n);
+  return key;
+}
+
+}  // namespace
+
+Status BucklingMemo::Solve(const FrameModel& model, const FrameResult& linear, int modes, BucklingResult* result,
+                           bool* reused) {
+  std::string key = BucklingKey(model, linear, modes);
+  *reused = !key_.empty() && key == key_;
+  if (*reused) {
+    *result = result_;
+    return Status::Ok();
+  }
+  key_.clear();
+  PQ_RETURN_IF_ERROR(SolveBuckling(model, linear, modes, result));
+  key_ = std::move(key);
+  result_ = *result;
   return Status::Ok();
 }
 

@@ -11,6 +11,7 @@
 // modelled (one element per member).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "base/status.h"
@@ -27,5 +28,20 @@ struct BucklingResult {
 
 // modes ≥ 1: how many of the smallest positive factors to find (fewer if the frame has fewer).
 Status SolveBuckling(const FrameModel& model, const FrameResult& linear, int modes, BucklingResult* result);
+
+// The last buckling solve, kept: `stiffen` checks the shell it ends with, and `analyze` then
+// checks the same frame under the same axial forces, bit for bit; that second Lanczos run
+// (~0.1 s on the Great Court) is skipped. The inputs are compared as bytes (nodes, members,
+// restraints, section, material, axial forces, modes), so anything that differs in one bit is
+// solved anew.
+class BucklingMemo {
+ public:
+  // SolveBuckling, or the kept result when the inputs are those of the last call; *reused says which.
+  Status Solve(const FrameModel& model, const FrameResult& linear, int modes, BucklingResult* result, bool* reused);
+
+ private:
+  std::string key_;
+  BucklingResult result_;
+};
 
 }  // namespace pqlayout

@@ -112,6 +112,37 @@ TEST(Buckling, HigherModesAscend) {
 
 // A cantilever under a tip load P across it: at the clamp M = P L, N = 0, so
 // η = P L / (W_el f_y) with W_el = I / (D/2).
+// The memo returns the kept result only for the very same inputs: the same column again (reused,
+// the same factors), then one bit of an axial force, a support or the modes count changed (solved
+// anew, and the Euler factor moves with the load).
+TEST(Buckling, TheMemoReusesOnlyTheSameInputs) {
+  const FrameModel m = Column(8, 6.0, 1e4, kPin, kRoller);
+  FrameResult linear;
+  ASSERT_TRUE(SolveFrame(m, &linear).ok());
+  BucklingMemo memo;
+  BucklingResult first, again;
+  bool reused = true;
+  ASSERT_TRUE(memo.Solve(m, linear, 3, &first, &reused).ok());
+  EXPECT_FALSE(reused);
+  ASSERT_TRUE(memo.Solve(m, linear, 3, &again, &reused).ok());
+  EXPECT_TRUE(reused);
+  EXPECT_EQ(again.factors, first.factors);
+  EXPECT_EQ(again.operations, first.operations);
+  FrameResult doubled = linear;
+  for (double& n : doubled.axial_force) n *= 2.0;
+  BucklingResult other;
+  ASSERT_TRUE(memo.Solve(m, doubled, 3, &other, &reused).ok());
+  EXPECT_FALSE(reused);
+  EXPECT_NEAR(other.factors.front(), 0.5 * first.factors.front(), 1e-9 * first.factors.front());
+  FrameModel clamped = m;
+  clamped.restraints.front() = kClamp;
+  ASSERT_TRUE(memo.Solve(clamped, doubled, 3, &other, &reused).ok());
+  EXPECT_FALSE(reused);
+  ASSERT_TRUE(memo.Solve(clamped, doubled, 2, &other, &reused).ok());
+  EXPECT_FALSE(reused);
+  EXPECT_EQ(other.factors.size(), 2u);
+}
+
 TEST(Utilisation, CantileverTipLoadIsTheHandValue) {
   const double L = 3.0, P = 5e3, fy = 355e6;
   FrameModel m = Column(6, L, 0.0, kClamp, kFree);
