@@ -41,7 +41,7 @@ Grid DomeGrid(int n) {
 void BM_ComplianceAndGradient(benchmark::State& state) {
   const Grid g = DomeGrid(static_cast<int>(state.range(0)));
   const AnalysisOptions analysis;
-  BlockCholesky solver;
+  FrameWorkspace solver;
   GridCompliance c;
   for (auto _ : state)
     if (!EvaluateGridCompliance(g.mesh, g.restraints, analysis, true, &c, &solver).ok())

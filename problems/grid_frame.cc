@@ -178,7 +178,7 @@ void StiffnessTerms(const GridFrame& frame, const FrameResult& r,
 
 Status EvaluateGridCompliance(const PolyMesh& mesh, const std::vector<Restraints>& vertex_restraints,
                               const AnalysisOptions& a, bool with_gradient, GridCompliance* out,
-                              BlockCholesky* reuse, const std::vector<bool>* joint_edges) {
+                              FrameWorkspace* reuse, const std::vector<bool>* joint_edges) {
   out->frame = GridFrame();
   BuildGridFrame(mesh, vertex_restraints, a, &out->frame, joint_edges);
   PQ_RETURN_IF_ERROR(SolveFrame(out->frame.model, &out->result, reuse));

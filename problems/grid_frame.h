@@ -71,6 +71,6 @@ struct GridCompliance {
 // reuse: see SolveFrame.
 Status EvaluateGridCompliance(const PolyMesh& mesh, const std::vector<Restraints>& vertex_restraints,
                               const AnalysisOptions& a, bool with_gradient, GridCompliance* out,
-                              BlockCholesky* reuse = nullptr, const std::vector<bool>* joint_edges = nullptr);
+                              FrameWorkspace* reuse = nullptr, const std::vector<bool>* joint_edges = nullptr);
 
 }  // namespace pqlayout

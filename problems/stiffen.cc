@@ -172,7 +172,7 @@ class Objective final : public ceres::FirstOrderFunction {
   ceres::Problem::EvaluateOptions evaluate_options_;
   std::vector<bool> joint_edges_;
   mutable double last_ratio_ = 1.0;
-  mutable BlockCholesky solver_;  // keeps the frame's symbolic analysis across evaluations
+  mutable FrameWorkspace solver_;  // keeps K's pattern and the factor's symbolic analysis across evaluations
 };
 
 bool Objective::Evaluate(const double* z, double* cost, double* gradient) const {

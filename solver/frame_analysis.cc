@@ -62,7 +62,30 @@ Status CheckModel(const FrameModel& m) {
 
 }  // namespace
 
-Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof) {
+namespace {
+
+// The topology a FramePattern is made for: node count, numbering, members' ends, restraints.
+std::vector<int> Topology(const FrameModel& m, bool every_dof) {
+  std::vector<int> t{static_cast<int>(m.nodes.size()), every_dof ? 1 : 0, static_cast<int>(m.restraints.size())};
+  for (const auto& mb : m.members) t.push_back(mb.a), t.push_back(mb.b);
+  for (const auto& r : m.restraints) {
+    int bits = 0;
+    for (int d = 0; d < 6; ++d) bits |= (r[d] ? 1 : 0) << d;
+    t.push_back(bits);
+  }
+  return t;
+}
+
+// The slot of (row, column) in K's compressed columns.
+int Slot(const Eigen::SparseMatrix<double>& K, int row, int column) {
+  const int* begin = K.innerIndexPtr() + K.outerIndexPtr()[column];
+  const int* end = K.innerIndexPtr() + K.outerIndexPtr()[column + 1];
+  return static_cast<int>(std::lower_bound(begin, end, row) - K.innerIndexPtr());
+}
+
+}  // namespace
+
+Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof, FramePattern* pattern) {
   PQ_RETURN_IF_ERROR(CheckModel(m));
   const int n = static_cast<int>(m.nodes.size());
   s->index.assign(6 * n, -1);
@@ -72,8 +95,19 @@ Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof) {
       if (m.restraints.empty() || !m.restraints[i][d]) s->index[6 * i + d] = s->free++;
   // The row and column of DOF k in K: its free number, or k itself over every DOF (−1: left out).
   const auto place = [&](int k) { return s->index[k] < 0 ? -1 : every_dof ? k : s->index[k]; };
+  const int size = every_dof ? 6 * n : s->free;
+  std::vector<int> topology;
+  if (pattern != nullptr) topology = Topology(m, every_dof);
+  const bool cached = pattern != nullptr && topology == pattern->ends;
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(144 * m.members.size() + (every_dof ? 6 * n : 0));
+  std::vector<double> values;
+  std::vector<char> added;  // the cached path: a slot's first term is stored, later ones added (setFromTriplets' order)
+  if (cached) {
+    values.assign(pattern->inner.size(), 0.0);
+    added.assign(values.size(), 0);
+  } else {
+    triplets.reserve(144 * m.members.size() + (every_dof ? 6 * n : 0));
+  }
   double diagonal_max = 0.0;
   s->member_k.resize(m.members.size()), s->member_t.resize(m.members.size());
   for (size_t e = 0; e < m.members.size(); ++e) {
@@ -85,24 +119,54 @@ Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof) {
     int dofs[12];
     for (int k = 0; k < 6; ++k) dofs[k] = place(6 * mb.a + k), dofs[6 + k] = place(6 * mb.b + k);
     for (int p = 0; p < 12; ++p)
-      for (int q = 0; q < 12; ++q)
-        if (dofs[p] >= 0 && dofs[q] >= 0) triplets.emplace_back(dofs[p], dofs[q], K(p, q));
+      for (int q = 0; q < 12; ++q) {
+        if (dofs[p] < 0 || dofs[q] < 0) continue;
+        if (!cached) {
+          triplets.emplace_back(dofs[p], dofs[q], K(p, q));
+          continue;
+        }
+        const int slot = pattern->slots[144 * e + 12 * p + q];
+        values[slot] = added[slot] ? values[slot] + K(p, q) : K(p, q);
+        added[slot] = 1;
+      }
     diagonal_max = std::max(diagonal_max, K.diagonal().cwiseAbs().maxCoeff());
   }
   // Over every DOF, a restrained one is its own row: the identity at the members' largest
   // diagonal entry (it then neither moves nor sets the factor's condition estimate).
+  if (cached) {
+    for (const int slot : pattern->restrained) values[slot] = diagonal_max;
+    s->K = Eigen::Map<const Eigen::SparseMatrix<double>>(size, size, static_cast<int>(values.size()),
+                                                         pattern->outer.data(), pattern->inner.data(), values.data());
+    return Status::Ok();
+  }
   if (every_dof)
     for (int k = 0; k < 6 * n; ++k)
       if (s->index[k] < 0) triplets.emplace_back(k, k, diagonal_max);
-  const int size = every_dof ? 6 * n : s->free;
   s->K.resize(size, size);
   s->K.setFromTriplets(triplets.begin(), triplets.end());
+  if (pattern == nullptr) return Status::Ok();
+  // The pattern for the next call with this topology.
+  pattern->ends = std::move(topology);
+  pattern->outer.assign(s->K.outerIndexPtr(), s->K.outerIndexPtr() + size + 1);
+  pattern->inner.assign(s->K.innerIndexPtr(), s->K.innerIndexPtr() + s->K.nonZeros());
+  pattern->slots.assign(144 * m.members.size(), -1);
+  for (size_t e = 0; e < m.members.size(); ++e) {
+    int dofs[12];
+    for (int k = 0; k < 6; ++k) dofs[k] = place(6 * m.members[e].a + k), dofs[6 + k] = place(6 * m.members[e].b + k);
+    for (int p = 0; p < 12; ++p)
+      for (int q = 0; q < 12; ++q)
+        if (dofs[p] >= 0 && dofs[q] >= 0) pattern->slots[144 * e + 12 * p + q] = Slot(s->K, dofs[p], dofs[q]);
+  }
+  pattern->restrained.clear();
+  if (every_dof)
+    for (int k = 0; k < 6 * n; ++k)
+      if (s->index[k] < 0) pattern->restrained.push_back(Slot(s->K, k, k));
   return Status::Ok();
 }
 
-Status SolveFrame(const FrameModel& m, FrameResult* r, BlockCholesky* reuse) {
+Status SolveFrame(const FrameModel& m, FrameResult* r, FrameWorkspace* reuse) {
   FrameSystem system;
-  PQ_RETURN_IF_ERROR(AssembleFrame(m, &system, true));
+  PQ_RETURN_IF_ERROR(AssembleFrame(m, &system, true, reuse != nullptr ? &reuse->pattern : nullptr));
   const int n = static_cast<int>(m.nodes.size());
   const std::vector<int>& index = system.index;
   const auto& member_k = system.member_k;
@@ -114,7 +178,7 @@ Status SolveFrame(const FrameModel& m, FrameResult* r, BlockCholesky* reuse) {
     if (index[k] < 0) f[k] = 0.0;
 
   BlockCholesky own;
-  BlockCholesky& solver = reuse != nullptr ? *reuse : own;
+  BlockCholesky& solver = reuse != nullptr ? reuse->factor : own;
   const Status factored = solver.Factorize(system.K);
   auto unsupported = [&](int row, bool whole_node, const std::string& why) {
     return Status::InvalidInput("the frame is a mechanism (" + why + "): node " + std::to_string(row / 6) + " (" +
