@@ -39,20 +39,31 @@ struct ClosestPointQuery::Tree {
   SegmentTree boundary;
 };
 
-ClosestPointQuery::ClosestPointQuery(const SurfaceModel& surface) : tree_(std::make_unique<Tree>()) {
+ClosestPointQuery::Geometry ClosestPointQuery::Gather(const SurfaceModel& surface) {
+  Geometry g;
+  g.triangles.reserve(surface.num_faces());
+  g.normals.reserve(surface.num_faces());
   for (int f = 0; f < surface.num_faces(); ++f) {
     const auto ids = surface.face_vertices(f);
-    tree_->triangles.emplace_back(ToCgal(surface.position(ids[0])), ToCgal(surface.position(ids[1])),
-                                  ToCgal(surface.position(ids[2])));
-    tree_->normals.push_back(surface.face_normal(f));
+    g.triangles.push_back({surface.position(ids[0]), surface.position(ids[1]), surface.position(ids[2])});
+    g.normals.push_back(surface.face_normal(f));
   }
+  for (const auto& loop : surface.boundary_loops())
+    for (size_t i = 0; i < loop.vertices.size(); ++i)
+      g.boundary.emplace_back(surface.position(loop.vertices[i]), surface.position(loop.vertices[(i + 1) % loop.vertices.size()]));
+  return g;
+}
+
+ClosestPointQuery::ClosestPointQuery(const SurfaceModel& surface) : ClosestPointQuery(Gather(surface)) {}
+
+ClosestPointQuery::ClosestPointQuery(const Geometry& g) : tree_(std::make_unique<Tree>()) {
+  tree_->triangles.reserve(g.triangles.size());
+  for (const auto& t : g.triangles) tree_->triangles.emplace_back(ToCgal(t[0]), ToCgal(t[1]), ToCgal(t[2]));
+  tree_->normals = g.normals;
   tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
   tree_->tree.build();
   tree_->tree.accelerate_distance_queries();
-  for (const auto& loop : surface.boundary_loops())
-    for (size_t i = 0; i < loop.vertices.size(); ++i)
-      tree_->segments.emplace_back(ToCgal(surface.position(loop.vertices[i])),
-                                   ToCgal(surface.position(loop.vertices[(i + 1) % loop.vertices.size()])));
+  for (const auto& [a, b] : g.boundary) tree_->segments.emplace_back(ToCgal(a), ToCgal(b));
   if (!tree_->segments.empty()) {
     tree_->boundary.insert(tree_->segments.cbegin(), tree_->segments.cend());
     tree_->boundary.build();

@@ -5,7 +5,10 @@
 // hint's distance instead of a k-d-tree guess and prunes every box farther away.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -29,7 +32,17 @@ Eigen::Vector3d TriangleBarycentric(const SurfaceModel& s, int face, const Eigen
 
 class ClosestPointQuery {
  public:
+  // What the trees are built from, copied out of a surface (Gather), so that the building can
+  // run on another thread while the surface is in use (SurfaceModel::IndexClosestPointsInBackground).
+  struct Geometry {
+    std::vector<std::array<Eigen::Vector3d, 3>> triangles;
+    std::vector<Eigen::Vector3d> normals;                                 // per triangle
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> boundary;   // boundary edges
+  };
+  static Geometry Gather(const SurfaceModel& surface);
+
   explicit ClosestPointQuery(const SurfaceModel& surface);
+  explicit ClosestPointQuery(const Geometry& geometry);
   ~ClosestPointQuery();
   SurfacePoint OnSurface(const Eigen::Vector3d& p, int hint = -1) const;
   SurfacePoint OnBoundary(const Eigen::Vector3d& p, int hint = -1) const;

@@ -9,8 +9,20 @@
 namespace pqlayout {
 
 const ClosestPointQuery& SurfaceModel::closest_points() const {
+  if (!closest_points_ && indexing_.valid()) {
+    closest_points_ = indexing_.get();
+    indexing_ = {};  // the thread's shared state goes
+  }
   if (!closest_points_) closest_points_ = std::make_shared<const ClosestPointQuery>(*this);
   return *closest_points_;
+}
+
+void SurfaceModel::IndexClosestPointsInBackground() const {
+  if (closest_points_ || indexing_.valid()) return;
+  indexing_ = std::async(std::launch::async, [geometry = ClosestPointQuery::Gather(*this)]() mutable {
+                const ClosestPointQuery::Geometry own = std::move(geometry);  // freed once the trees are built
+                return std::make_shared<const ClosestPointQuery>(own);
+              }).share();
 }
 
 SurfaceModel::SurfaceModel(TriMesh mesh) : mesh_(std::move(mesh)) {

@@ -5,6 +5,7 @@
 // (see VertexField / FaceField), which the field writers export by name.
 #pragma once
 
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,6 +64,11 @@ class SurfaceModel {
   // stiffen): a million triangles take ~1 s to index. Positions never change, so it never goes
   // stale. Not safe for a concurrent first call; the stages call it from one thread.
   const ClosestPointQuery& closest_points() const;
+  // Starts indexing on a thread of its own (the positions copied first, on this thread), so
+  // that closest_points() later finds it built or waits for it: the pipeline starts it after
+  // the surface stage, and the ~1.2 s at a million triangles overlaps the membrane and guidance.
+  // The same trees, so the same answers.
+  void IndexClosestPointsInBackground() const;
 
   Eigen::Vector3d bbox_min() const { return bbox_min_; }
   Eigen::Vector3d bbox_max() const { return bbox_max_; }
@@ -99,6 +105,7 @@ class SurfaceModel {
   Eigen::Vector3d bbox_min_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d bbox_max_ = Eigen::Vector3d::Zero();
   mutable std::shared_ptr<const ClosestPointQuery> closest_points_;
+  mutable std::shared_future<std::shared_ptr<const ClosestPointQuery>> indexing_;  // IndexClosestPointsInBackground's
 };
 
 }  // namespace pqlayout

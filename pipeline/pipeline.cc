@@ -167,6 +167,10 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
     // Supports that cannot hold the frame are refused before the layout is solved, not after.
     if (entry.stage == Stage::kSurface && static_cast<int>(options.until) >= static_cast<int>(Stage::kStiffen))
       PQ_RETURN_IF_ERROR(CheckSupportsHoldTheFrameInPlan(state.supports));
+    // The reference's closest-point index, which levelset (a large reference's working mesh),
+    // extract, planarize and stiffen query, built on the second core during membrane and guidance.
+    if (entry.stage == Stage::kSurface && static_cast<int>(options.until) >= static_cast<int>(Stage::kLevelset))
+      state.surface->IndexClosestPointsInBackground();
     completed.push_back(entry.name);
     // fields.vtk once its last input is there (pipeline/surface_fields.h), while the stages go on.
     const Stage last_input =

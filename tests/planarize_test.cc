@@ -198,6 +198,36 @@ TEST(ClosestPointQuery, HintedSearchGivesTheSameClosestPoint) {
   }
 }
 
+// Every field of two closest-point answers equal, to the bit.
+void ExpectSameAnswer(const SurfacePoint& a, const SurfacePoint& b) {
+  EXPECT_EQ(a.element, b.element);
+  EXPECT_EQ(a.point, b.point);
+  EXPECT_EQ(a.normal, b.normal);
+  EXPECT_EQ(a.tangent, b.tangent);
+  EXPECT_EQ(a.inside_edge, b.inside_edge);
+  EXPECT_EQ(a.distance, b.distance);
+}
+
+// The index built on another thread (SurfaceModel::IndexClosestPointsInBackground) answers
+// exactly as one built in line: every field of every answer the same, surface and boundary;
+// asked twice, the surface hands out the same index.
+TEST(ClosestPointQuery, IndexedInTheBackgroundGivesTheSameAnswers) {
+  const SurfaceModel reference = WavyReference();
+  const ClosestPointQuery in_line(reference);
+  const SurfaceModel indexed = WavyReference();
+  indexed.IndexClosestPointsInBackground();
+  indexed.IndexClosestPointsInBackground();  // a second call while the first runs: ignored
+  const ClosestPointQuery& background = indexed.closest_points();
+  EXPECT_EQ(&background, &indexed.closest_points());
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Vector3d p(Uniform(-1, 7), Uniform(-1, 7), Uniform(-1, 1));
+    for (const bool boundary : {false, true}) {
+      ExpectSameAnswer(boundary ? in_line.OnBoundary(p) : in_line.OnSurface(p),
+                       boundary ? background.OnBoundary(p) : background.OnSurface(p));
+    }
+  }
+}
+
 // RememberedClosestPoint (planarisation's closeness and boundary residuals): every answer,
 // from memory or searched with the last one as hint, is the query's own to the bit — also
 // back at a point asked two questions ago (a memory keyed on anything but the exact position
@@ -205,14 +235,7 @@ TEST(ClosestPointQuery, HintedSearchGivesTheSameClosestPoint) {
 TEST(ClosestPoints, RememberedAnswersAreTheQuerysOwn) {
   const SurfaceModel s(testing::ToMesh(testing::GridSoup(6, [](double x, double y) { return std::sin(x) * std::cos(0.7 * y); })));
   const ClosestPointQuery& query = s.closest_points();
-  const auto expect_same = [](const SurfacePoint& a, const SurfacePoint& b) {
-    EXPECT_EQ(a.element, b.element);
-    EXPECT_EQ(a.point, b.point);
-    EXPECT_EQ(a.normal, b.normal);
-    EXPECT_EQ(a.tangent, b.tangent);
-    EXPECT_EQ(a.inside_edge, b.inside_edge);
-    EXPECT_EQ(a.distance, b.distance);
-  };
+  const auto expect_same = ExpectSameAnswer;
   const Eigen::Vector3d p1(2.3, 1.7, 0.4), p2(2.35, 1.7, 0.4), p3(5.1, 0.2, -0.8);
   const Eigen::Vector3d p1_next(std::nextafter(p1.x(), 3.0), p1.y(), p1.z());
   RememberedClosestPoint on_surface, on_boundary;
