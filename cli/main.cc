@@ -12,6 +12,7 @@
 #include <iostream>
 #include <new>
 
+#include "base/allocator.h"
 #include "base/atomic_file.h"
 #include "base/interrupt.h"
 #include "pipeline/build_info.h"
@@ -40,7 +41,7 @@ std::string VersionText() {
   const auto& info = pqlayout::GetBuildInfo();
   std::string text = "pqlayout " + info.version + " (git " + info.git_revision + ")\n";
   for (const auto& [name, version] : info.libraries) text += "  " + name + " " + version + "\n";
-  return text;
+  return text + "  malloc: " + pqlayout::AllocatorDescription() + "\n";
 }
 
 using pqlayout::OneLine;

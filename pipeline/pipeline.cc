@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/interrupt.h"
+#include "base/allocator.h"
 #include "pipeline/build_info.h"
 #include "pipeline/layout_targets.h"
 #include "pipeline/surface_fields.h"
@@ -89,7 +90,10 @@ nlohmann::json BuildInfoJson() {
   const BuildInfo& info = GetBuildInfo();
   nlohmann::json libraries = nlohmann::json::object();
   for (const auto& [name, version] : info.libraries) libraries[name] = version;
-  return {{"version", info.version}, {"git_revision", info.git_revision}, {"libraries", libraries}};
+  return {{"version", info.version},
+          {"git_revision", info.git_revision},
+          {"libraries", libraries},
+          {"malloc", AllocatorDescription()}};
 }
 
 // What report.html's 3D view draws: the final shell, its planarity, and the offset and

@@ -10,6 +10,7 @@ packages=(
   calculix-ccx           # ccx: the CalculiX cross-check in tests/calculix_test.cc (skipped without it)
   libjs-three            # three.js r111 + OrbitControls, compiled into the binary for report.html's 3D view (report/report_view3d.h)
   chromium               # headless browser for the report check (tests/report_check_test, scripts/check_report.sh)
+  libjemalloc-dev        # the pqlayout executable's malloc, with transparent huge pages (cli/allocator_config.cc)
   libopenblas-dev        # the one BLAS/LAPACK pqlayout links (CMake BLA_VENDOR=OpenBLAS); see solver/numerics.h
   python3-dev pybind11-dev python3-numpy python3-pytest  # `import pqlayout` (python/) and its pytest suite
   clang libclang-rt-14-dev  # scripts/fuzz.sh: clang with libFuzzer and the sanitizer runtimes

@@ -15,7 +15,7 @@ bash scripts/install_deps.sh
 flags="-fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer"
 flags="$flags -DEIGEN_MALLOC_ALREADY_ALIGNED=1"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPQLAYOUT_BUILD_BENCHMARKS=OFF -DPQLAYOUT_BUILD_PYTHON=OFF \
-  -DPQLAYOUT_TEST_TIMEOUT=3600 \
+  -DPQLAYOUT_TEST_TIMEOUT=3600 -DPQLAYOUT_JEMALLOC=OFF \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > build-asan.log 2>&1 \
   || { cat build-asan.log; exit 1; }
 ninja -C build-asan -j "$(nproc)"

@@ -33,6 +33,11 @@ TEST(Cli, VersionAndHelp) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("pqlayout 0."), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Ceres 2.1"), std::string::npos) << r.out;
+#ifdef PQLAYOUT_JEMALLOC
+  // The executable's malloc (cli/allocator_config.cc): jemalloc, its huge-page setting taken.
+  EXPECT_NE(r.out.find("malloc: jemalloc 5."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(thp always)"), std::string::npos) << r.out;
+#endif
   r = RunPqlayout(dir, "--help");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("run"), std::string::npos);
@@ -58,6 +63,11 @@ TEST(Cli, RunWritesReportAndSurface) {
             report["stages"]["surface"]["n_boundary_vertices"]);
   EXPECT_FALSE(report["pqlayout"]["git_revision"].get<std::string>().empty());
   EXPECT_TRUE(report["pqlayout"]["libraries"].contains("Ceres"));
+#ifdef PQLAYOUT_JEMALLOC
+  EXPECT_EQ(report["pqlayout"]["malloc"].get<std::string>().rfind("jemalloc 5.", 0), 0u) << report["pqlayout"];
+#else
+  EXPECT_EQ(report["pqlayout"]["malloc"], "glibc malloc");
+#endif
   // Field outputs (SPEC names and columns); fields.vtk carries every field for ParaView.
   const std::string vertices = ReadFile(dir + "/result/fields/vertices.csv");
   EXPECT_EQ(vertices.rfind("id,x,y,z,vx,vy,vz\n", 0), 0u);
