@@ -316,7 +316,9 @@ std::vector<char> FacesAtSingularities(const SurfaceModel& surface,
                                        const StreamlineOptions& options) {
   std::vector<char> blocked(surface.num_faces(), 0);
   if (!options.stop_at_singularities) return blocked;
-  for (const auto& singularity : FindLineFieldSingularities(surface, directions))
+  std::vector<LineFieldSingularity> found;
+  if (options.singularities == nullptr) found = FindLineFieldSingularities(surface, directions);
+  for (const auto& singularity : options.singularities != nullptr ? *options.singularities : found)
     for (const auto f : surface.mesh().vf_range(VertexHandle(singularity.vertex)))
       blocked[f.idx()] = 1;
   return blocked;

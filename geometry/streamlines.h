@@ -25,6 +25,7 @@
 
 #include <Eigen/Core>
 
+#include "geometry/line_field_singularities.h"
 #include "geometry/surface_model.h"
 
 namespace pqlayout {
@@ -39,6 +40,10 @@ struct StreamlineOptions {
   double min_projected_norm = 1e-3;   // |d_xy| / |d| below this: no field on the face
   bool stop_at_singularities = true;  // no field on the faces around vertices of non-zero
                                       // index (FindLineFieldSingularities), e.g. sources
+  // Those singularities if the caller has found them already (FindLineFieldSingularities of the
+  // same surface and directions, default length bound; the guidance stage's), else null: found
+  // here (~0.17 s at a million triangles).
+  const std::vector<LineFieldSingularity>* singularities = nullptr;
 };
 
 // Evenly spaced polylines (xy, metres) of the line field `directions` (one 3D vector per

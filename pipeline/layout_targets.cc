@@ -74,7 +74,7 @@ class Surroundings {
  public:
   explicit Surroundings(const PipelineState& state)
       : state_(state), h_(state.config.layout.spacing), boundary_(*state.surface) {
-    singularities_ = FindLineFieldSingularities(*state.surface, state.guidance.direction);
+    singularities_ = state.guidance.singularities;  // the guidance stage's
     for (size_t v = 0; v < state.quads.origin.size(); ++v)
       if (state.quads.origin[v].corner)
         corners_.push_back(ToEigen(state.quads.mesh.point(VertexHandle(static_cast<int>(v)))));

@@ -47,8 +47,8 @@ void WriteGuidanceOutputs(const SurfaceModel& surface, const Eigen::Vector3d& or
   });
 }
 
-nlohmann::json SingularityMetrics(const SurfaceModel& surface, const GuidanceField& g) {
-  const auto singularities = FindLineFieldSingularities(surface, g.direction);
+nlohmann::json SingularityMetrics(const GuidanceField& g) {
+  const auto& singularities = g.singularities;
   nlohmann::json list = nlohmann::json::array();
   std::map<std::string, int> by_index;
   for (const auto& s : singularities) {
@@ -104,6 +104,8 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
     fallback_area = AddCurvatureFallback(surface, curvature, options.fallback_weight, &g);
   }
 
+  g.singularities = FindLineFieldSingularities(surface, g.direction);  // the field is final now
+
   double weight_sum = 0.0, area_above_half = 0.0;
   int faces_above_half = 0;
   for (int f = 0; f < surface.num_faces(); ++f) {
@@ -119,7 +121,7 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
               {"weight_mean", weight_sum / surface.num_faces()},
               {"faces_weight_above_half", static_cast<double>(faces_above_half) / surface.num_faces()},
               {"area_weight_above_half", area_above_half / surface.total_area()},
-              {"singularities", SingularityMetrics(surface, g)},
+              {"singularities", SingularityMetrics(g)},
               {"fallback", fallback ? options.fallback : "none"},
               {"area_fallback", fallback_area}};
   (*metrics)["sources"] = SourceMetrics(surface, g);
@@ -139,8 +141,10 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
                             : strain ? "Guidance: principal strain directions (integral curves)"
                                      : "Guidance: " + options.source + " directions (integral curves)";
   const std::string label = strain ? "|ε_max|" : options.source == "curvature" ? "|κ1 − κ2| [1/m]" : "|d|";
+  FigureOptions figure;
+  figure.guidance_singularities = &g.singularities;
   return WriteGuidanceFigure(surface, g.direction, g.magnitude, label, g.weight, title,
-                             out->Path("figures/guidance.svg"));
+                             out->Path("figures/guidance.svg"), figure);
 }
 
 }  // namespace pqlayout

@@ -78,6 +78,7 @@ Status RunLevelsetStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
   }
   FigureOptions figure;
   figure.min_crossing_deg = state->config.levelset.min_angle;
+  figure.guidance_singularities = &state->guidance.singularities;
   // The sheared faces as report.json counts them: on the remeshed working mesh when the solve
   // ran there without seams (the lines are drawn on the reference, where interpolated values
   // can cross a little differently), else on the mesh the lines are drawn on.

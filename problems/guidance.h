@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 
+#include "geometry/line_field_singularities.h"
 #include "geometry/surface_model.h"
 #include "problems/options.h"
 
@@ -32,6 +33,11 @@ struct GuidanceField {
   // can be measured where the source is strong.
   std::vector<Eigen::Vector3d> source_direction;
   std::vector<double> source_weight;
+  // The stage's field on the reference only: FindLineFieldSingularities(surface, direction), found
+  // once by the guidance stage for its metrics, its figure, the level-set figure's guidance curves
+  // and report.json's targets (~0.17 s each at a million triangles). Empty on the fields built
+  // from it (AppendFace, the working mesh's transfer): those find their own.
+  std::vector<LineFieldSingularity> singularities;
 };
 
 // Appends face f of `from` (every per-face field, the source ones if present) to `to`.

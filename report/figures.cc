@@ -174,6 +174,7 @@ std::vector<std::vector<Vector2d>> GuidanceCurves(const SurfaceModel& surface,
                                                   const SvgCanvas& canvas) {
   StreamlineOptions streamlines;
   streamlines.separation = options.streamline_spacing_px * canvas.unit() / canvas.px_per_metre();
+  streamlines.singularities = options.guidance_singularities;
   return EvenlySpacedStreamlines(surface, direction, streamlines);
 }
 

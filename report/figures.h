@@ -30,6 +30,7 @@
 
 #include "geometry/mesh.h"
 #include "base/status.h"
+#include "geometry/line_field_singularities.h"
 #include "geometry/seams.h"
 #include "geometry/surface_model.h"
 #include "report/svg_canvas.h"
@@ -46,6 +47,9 @@ struct FigureOptions {
   // `marked_label`, e.g. the panels planarisation folded (none: no outline, no entry).
   std::vector<int> marked_faces;
   std::string marked_label;
+  // Guidance and level-set figures: the singularities of `direction` on `surface` if already
+  // found (the guidance stage's, GuidanceField::singularities), else null: found again.
+  const std::vector<LineFieldSingularity>* guidance_singularities = nullptr;
 };
 
 // Paper Fig. 3: top view, v_z per vertex (metres) as a smooth colour map (always resampled

@@ -83,6 +83,32 @@ TEST(Streamlines, RadialFieldOnDiskGivesRadialLines) {
   EXPECT_GE(MinDistanceBetweenLines(lines), options.test_ratio * options.separation * (1 - 1e-9));
 }
 
+// The singularities a caller has found already (the guidance stage's) are the ones used: the
+// same list gives the same lines to the bit, and a list without the radial field's centre
+// (index +1) lets lines run into the faces round it, which are otherwise no-field.
+TEST(Streamlines, SingularitiesGivenAreTheOnesUsed) {
+  const SurfaceModel surface(testing::GeneratedMesh("disk", 20.0, 0.0, 0.0, 0.5));
+  std::vector<Vector3d> radial(surface.num_faces());
+  for (int f = 0; f < surface.num_faces(); ++f) radial[f] << Centroid(surface, f).normalized(), 0.0;
+  const std::vector<LineFieldSingularity> found = FindLineFieldSingularities(surface, radial);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].index, 1.0);
+  StreamlineOptions options;
+  options.separation = 1.0;
+  const Polylines own = EvenlySpacedStreamlines(surface, radial, options);
+  options.singularities = &found;
+  EXPECT_EQ(EvenlySpacedStreamlines(surface, radial, options), own);
+  const std::vector<LineFieldSingularity> none;
+  options.singularities = &none;
+  const auto closest_to_centre = [](const Polylines& lines) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& line : lines)
+      for (const auto& p : line) best = std::min(best, p.norm());
+    return best;
+  };
+  EXPECT_LT(closest_to_centre(EvenlySpacedStreamlines(surface, radial, options)), 0.5 * closest_to_centre(own));
+}
+
 TEST(Streamlines, SignFlipsPerFaceDoNotChangeTheLines) {
   const SurfaceModel square(testing::ToMesh(testing::FlatGridSoup(16)));
   std::vector<Vector3d> field(square.num_faces()), flipped(square.num_faces());
