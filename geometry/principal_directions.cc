@@ -4,6 +4,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "base/parallel_ranges.h"
+
 namespace pqlayout {
 
 Eigen::Matrix3d GreenLagrangeStrain(const Eigen::Vector3d& n, const Eigen::Vector3d& grad_vz) {
@@ -102,17 +104,19 @@ std::vector<Eigen::Matrix3d> AverageOverNeighbourFaces(const SurfaceModel& surfa
     }
   }
   std::vector<Eigen::Matrix3d> averaged(surface.num_faces());
-  for (int f = 0; f < surface.num_faces(); ++f) {
-    Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
-    double area = 0.0;
-    for (const int v : surface.face_vertices(f)) {
-      sum += vertex_sum[v];
-      area += vertex_area[v];
+  ParallelRanges(surface.num_faces(), [&](int begin, int end) {
+    for (int f = begin; f < end; ++f) {
+      Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+      double area = 0.0;
+      for (const int v : surface.face_vertices(f)) {
+        sum += vertex_sum[v];
+        area += vertex_area[v];
+      }
+      const Eigen::Vector3d& n = surface.face_normal(f);
+      const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
+      averaged[f] = P * (sum / area) * P;
     }
-    const Eigen::Vector3d& n = surface.face_normal(f);
-    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
-    averaged[f] = P * (sum / area) * P;
-  }
+  });
   return averaged;
 }
 
@@ -121,30 +125,33 @@ std::vector<Eigen::Matrix3d> AverageOverNeighbourFaces(const SurfaceModel& surfa
 std::vector<Eigen::Matrix3d> FaceShapeOperators(const SurfaceModel& surface) {
   const std::vector<Eigen::Vector3d> normals = VertexNormals(surface);
   std::vector<Eigen::Matrix3d> shape(surface.num_faces());
-  for (int f = 0; f < surface.num_faces(); ++f) {
-    const auto ids = surface.face_vertices(f);
-    Eigen::Vector3d t1, t2;
-    TangentBasis(surface.face_normal(f), &t1, &t2);
-    // Unknowns (a, b, c) of S = [a b; b c] in the basis (t1, t2); two equations per edge.
-    Eigen::Matrix<double, 6, 3> A;
-    Eigen::Matrix<double, 6, 1> rhs;
-    for (int k = 0; k < 3; ++k) {
-      const int from = ids[(k + 1) % 3], to = ids[(k + 2) % 3];
-      const Eigen::Vector3d e = surface.position(to) - surface.position(from);
-      const Eigen::Vector3d dn = normals[to] - normals[from];
-      const double u = e.dot(t1), v = e.dot(t2);
-      A.row(2 * k) << u, v, 0.0;
-      A.row(2 * k + 1) << 0.0, u, v;
-      rhs(2 * k) = dn.dot(t1);
-      rhs(2 * k + 1) = dn.dot(t2);
+  // Each face's fit on its own (base/parallel_ranges.h: the same bits on any number of threads).
+  ParallelRanges(surface.num_faces(), [&](int begin, int end) {
+    for (int f = begin; f < end; ++f) {
+      const auto ids = surface.face_vertices(f);
+      Eigen::Vector3d t1, t2;
+      TangentBasis(surface.face_normal(f), &t1, &t2);
+      // Unknowns (a, b, c) of S = [a b; b c] in the basis (t1, t2); two equations per edge.
+      Eigen::Matrix<double, 6, 3> A;
+      Eigen::Matrix<double, 6, 1> rhs;
+      for (int k = 0; k < 3; ++k) {
+        const int from = ids[(k + 1) % 3], to = ids[(k + 2) % 3];
+        const Eigen::Vector3d e = surface.position(to) - surface.position(from);
+        const Eigen::Vector3d dn = normals[to] - normals[from];
+        const double u = e.dot(t1), v = e.dot(t2);
+        A.row(2 * k) << u, v, 0.0;
+        A.row(2 * k + 1) << 0.0, u, v;
+        rhs(2 * k) = dn.dot(t1);
+        rhs(2 * k + 1) = dn.dot(t2);
+      }
+      const Eigen::Vector3d abc = A.colPivHouseholderQr().solve(rhs);
+      Eigen::Matrix<double, 3, 2> basis;
+      basis << t1, t2;
+      Eigen::Matrix2d s;
+      s << abc(0), abc(1), abc(1), abc(2);
+      shape[f] = basis * s * basis.transpose();
     }
-    const Eigen::Vector3d abc = A.colPivHouseholderQr().solve(rhs);
-    Eigen::Matrix<double, 3, 2> basis;
-    basis << t1, t2;
-    Eigen::Matrix2d s;
-    s << abc(0), abc(1), abc(1), abc(2);
-    shape[f] = basis * s * basis.transpose();
-  }
+  });
   ExtendShapeOperatorsToBoundaryFaces(surface, &shape);
   return AverageOverNeighbourFaces(surface, shape);
 }

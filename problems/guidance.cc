@@ -9,6 +9,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "base/parallel_ranges.h"
 #include "geometry/differential_operators.h"
 #include "geometry/principal_directions.h"
 #include "problems/guidance.h"
@@ -129,22 +130,25 @@ int CombCurvatureNet(const SurfaceModel& surface, double min_area, GuidanceField
 Status ComputeStrainGuidance(const SurfaceModel& surface, const std::vector<double>& v_z,
                              const GuidanceOptions& options, GuidanceField* field) {
   Resize(surface.num_faces(), field);
-  for (int f = 0; f < surface.num_faces(); ++f) {
-    const Eigen::Vector3d& n = surface.face_normal(f);
-    const Eigen::Vector3d grad = FaceGradient(surface, f, v_z);
-    const TangentEigen strain = DecomposeOnTangentPlane(GreenLagrangeStrain(n, grad), n);
-    // Orientation (paper): ⟨e_max, P v⟩ > 0 with v the face's mean displacement. On a face
-    // parallel to the ground P v vanishes; there the gradient of v_z decides instead.
-    const auto ids = surface.face_vertices(f);
-    const double mean_vz = (v_z[ids[0]] + v_z[ids[1]] + v_z[ids[2]]) / 3.0;
-    const Eigen::Vector3d Pv = mean_vz * (Eigen::Vector3d::UnitZ() - n * n.z());
-    const bool flat = Pv.norm() <= 1e-9 * std::abs(mean_vz);
-    const double side = flat ? strain.major_direction.dot(grad) : strain.major_direction.dot(Pv);
-    field->direction[f] = side < 0.0 ? -strain.major_direction : strain.major_direction;
-    field->major[f] = strain.major;
-    field->minor[f] = strain.minor;
-    field->magnitude[f] = std::abs(strain.major);
-  }
+  // Each face on its own (base/parallel_ranges.h: the same bits on any number of threads).
+  ParallelRanges(surface.num_faces(), [&](int begin, int end) {
+    for (int f = begin; f < end; ++f) {
+      const Eigen::Vector3d& n = surface.face_normal(f);
+      const Eigen::Vector3d grad = FaceGradient(surface, f, v_z);
+      const TangentEigen strain = DecomposeOnTangentPlane(GreenLagrangeStrain(n, grad), n);
+      // Orientation (paper): ⟨e_max, P v⟩ > 0 with v the face's mean displacement. On a face
+      // parallel to the ground P v vanishes; there the gradient of v_z decides instead.
+      const auto ids = surface.face_vertices(f);
+      const double mean_vz = (v_z[ids[0]] + v_z[ids[1]] + v_z[ids[2]]) / 3.0;
+      const Eigen::Vector3d Pv = mean_vz * (Eigen::Vector3d::UnitZ() - n * n.z());
+      const bool flat = Pv.norm() <= 1e-9 * std::abs(mean_vz);
+      const double side = flat ? strain.major_direction.dot(grad) : strain.major_direction.dot(Pv);
+      field->direction[f] = side < 0.0 ? -strain.major_direction : strain.major_direction;
+      field->major[f] = strain.major;
+      field->minor[f] = strain.minor;
+      field->magnitude[f] = std::abs(strain.major);
+    }
+  });
   field->scale = *std::max_element(field->magnitude.begin(), field->magnitude.end());
   field->weight = AlignmentWeights(StrainDominance(*field, options), field->scale, options.threshold, options.ramp);
   return Status::Ok();
@@ -161,14 +165,16 @@ Status ComputeCurvatureGuidance(const SurfaceModel& surface, const GuidanceOptio
   for (int f = 0; f < surface.num_faces(); ++f) mean_curvature += surface.face_area(f) * shape[f].trace();
   const int orientation = mean_curvature < 0.0 ? -1 : 1;
   std::vector<double> curvature_sum(surface.num_faces());
-  for (int f = 0; f < surface.num_faces(); ++f) {
-    const TangentEigen curvature = DecomposeOnTangentPlane(shape[f], surface.face_normal(f), orientation);
-    field->direction[f] = curvature.major_direction;
-    field->major[f] = curvature.major;
-    field->minor[f] = curvature.minor;
-    field->magnitude[f] = std::abs(curvature.major - curvature.minor);
-    curvature_sum[f] = std::abs(curvature.major) + std::abs(curvature.minor);
-  }
+  ParallelRanges(surface.num_faces(), [&](int begin, int end) {
+    for (int f = begin; f < end; ++f) {
+      const TangentEigen curvature = DecomposeOnTangentPlane(shape[f], surface.face_normal(f), orientation);
+      field->direction[f] = curvature.major_direction;
+      field->major[f] = curvature.major;
+      field->minor[f] = curvature.minor;
+      field->magnitude[f] = std::abs(curvature.major - curvature.minor);
+      curvature_sum[f] = std::abs(curvature.major) + std::abs(curvature.minor);
+    }
+  });
   // Scale: the 95th percentile of |κ1| + |κ2|, so that a few sharply curved faces (the Great
   // Court's rectangle corners) do not decide the weights of the whole roof.
   const auto rank = curvature_sum.begin() + static_cast<long>(0.95 * (curvature_sum.size() - 1));

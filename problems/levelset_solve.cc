@@ -9,6 +9,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "base/parallel_ranges.h"
 #include "geometry/closest_point.h"
 #include "geometry/line_field_singularities.h"
 #include "geometry/plan_remesh.h"
@@ -301,15 +302,19 @@ void InterpolateFromWorking(const SurfaceModel& s, const std::shared_ptr<const S
   const ClosestPointQuery& query = working->closest_points();
   solution->phi.assign(s.num_vertices(), 0.0);
   solution->psi.assign(s.num_vertices(), 0.0);
-  for (int v = 0; v < s.num_vertices(); ++v) {
-    const SurfacePoint p = query.OnSurface(s.position(v));
-    const Eigen::Vector3d w = TriangleBarycentric(*working, p.element, holed ? p.point : s.position(v));
-    const auto ids = working->face_vertices(p.element);
-    for (int k = 0; k < 3; ++k) {
-      solution->phi[v] += w[k] * coarse.phi[ids[k]];
-      solution->psi[v] += w[k] * coarse.psi[ids[k]];
+  // Each vertex on its own (base/parallel_ranges.h; the tree answers const queries from any
+  // thread): 482k queries, ~0.5 s on one thread, at a million triangles.
+  ParallelRanges(s.num_vertices(), [&](int begin, int end) {
+    for (int v = begin; v < end; ++v) {
+      const SurfacePoint p = query.OnSurface(s.position(v));
+      const Eigen::Vector3d w = TriangleBarycentric(*working, p.element, holed ? p.point : s.position(v));
+      const auto ids = working->face_vertices(p.element);
+      for (int k = 0; k < 3; ++k) {
+        solution->phi[v] += w[k] * coarse.phi[ids[k]];
+        solution->psi[v] += w[k] * coarse.psi[ids[k]];
+      }
     }
-  }
+  });
   // The metrics are those of the solve, on the working mesh: on the reference, a small
   // triangle straddling a kink of the working mesh's piecewise linear φ gets a blend of the
   // two gradients, which says nothing about the layout but would dominate the minimum
