@@ -43,19 +43,36 @@ void WritePoint(const Point& p, const Eigen::Vector3d& origin, std::ostream& out
   }
 }
 
-template <typename Mesh>
-void WriteObj(const Mesh& mesh, const Eigen::Vector3d& origin, std::ostream& out) {
-  out << "# pqlayout: " << mesh.n_vertices() << " vertices, " << mesh.n_faces() << " faces\n";
-  for (const auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
+// points: a range of points; for_each_face(visit) calls visit(ids) for each face in order, ids a
+// range of its vertices' 0-based indices.
+template <typename Points, typename ForEachFace>
+void WriteObj(const Points& points, size_t n_faces, const ForEachFace& for_each_face, const Eigen::Vector3d& origin,
+              std::ostream& out) {
+  out << "# pqlayout: " << points.size() << " vertices, " << n_faces << " faces\n";
+  for (const auto& p : points) {
     out << "v ";
     WritePoint(p, origin, out);
   }
-  for (const auto f : mesh.faces()) {
+  for_each_face([&](const auto& ids) {
     out << "f";
-    for (const auto v : mesh.fv_range(f)) out << " " << v.idx() + 1;
+    for (const auto v : ids) out << " " << v + 1;
     out << "\n";
-  }
+  });
+}
+
+template <typename Mesh>
+void WriteObj(const Mesh& mesh, const Eigen::Vector3d& origin, std::ostream& out) {
+  std::vector<typename Mesh::Point> points;
+  points.reserve(mesh.n_vertices());
+  for (const auto v : mesh.vertices()) points.push_back(mesh.point(v));
+  WriteObj(points, mesh.n_faces(), [&](const auto& visit) {
+    std::vector<int> ids;
+    for (const auto f : mesh.faces()) {
+      ids.clear();
+      for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx());
+      visit(ids);
+    }
+  }, origin, out);
 }
 
 template <typename Mesh>
@@ -225,6 +242,31 @@ Status WriteMesh(const TriMesh& mesh, const std::string& path, const Eigen::Vect
 }
 Status WriteMesh(const PolyMesh& mesh, const std::string& path, const Eigen::Vector3d& origin) {
   return WriteMeshImpl(mesh, path, origin);
+}
+
+TriangleArrays CopyTriangles(const TriMesh& mesh) {
+  TriangleArrays copy;
+  copy.points.reserve(mesh.n_vertices());
+  for (const auto v : mesh.vertices()) copy.points.push_back(ToEigen(mesh.point(v)));
+  copy.triangles.reserve(mesh.n_faces());
+  for (const auto f : mesh.faces()) {
+    std::array<int, 3> ids{};
+    int k = 0;
+    for (const auto v : mesh.fv_range(f)) ids[k++] = v.idx();
+    copy.triangles.push_back(ids);
+  }
+  return copy;
+}
+
+Status WriteObj(const TriangleArrays& mesh, const std::string& path, const Eigen::Vector3d& origin) {
+  return WriteFileAtomically(path, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    WriteObj(mesh.points, mesh.triangles.size(), [&](const auto& visit) {
+      for (const auto& t : mesh.triangles) visit(t);
+    }, origin, out);
+    out.close();
+    return static_cast<bool>(out);
+  });
 }
 
 }  // namespace pqlayout

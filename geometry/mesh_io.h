@@ -7,6 +7,7 @@
 // is our own too, atomic and at full double precision (OpenMesh's writers go through floats).
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -63,5 +64,16 @@ int SplitQuads(PolygonSoup* soup);
 // origin is added to every point (a georeferenced surface is solved in a local frame).
 Status WriteMesh(const TriMesh& mesh, const std::string& path, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 Status WriteMesh(const PolyMesh& mesh, const std::string& path, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
+
+// A triangle mesh as plain arrays (points, 0-based vertex indices per face), copied out of a
+// mesh so that it can be written on another thread while the mesh is in use (stage surface
+// writes surface.obj in the background: ~0.25 s at a million triangles).
+struct TriangleArrays {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+};
+TriangleArrays CopyTriangles(const TriMesh& mesh);
+// The same bytes as WriteMesh(mesh, path, origin) for the mesh copied and an .obj path.
+Status WriteObj(const TriangleArrays& mesh, const std::string& path, const Eigen::Vector3d& origin);
 
 }  // namespace pqlayout

@@ -1,6 +1,8 @@
 // Stage `surface` (SPEC §1): the reference geometry and its supports.
 #include <glog/logging.h>
 
+#include <memory>
+
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_metrics.h"
 #include "geometry/surface_generators.h"
@@ -123,7 +125,10 @@ Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
             << (frame.parts > 1 ? ", " + std::to_string(frame.parts) + " separate parts" : std::string())
             << ", min angle "
             << quality.min_angle_deg << "°";
-  return WriteMesh(surface.mesh(), out->Path("surface.obj"), state->origin);
+  // Formatted and written on the writer's thread while the stages go on (base/background_writer.h).
+  out->WriteInBackground([mesh = std::make_shared<const TriangleArrays>(CopyTriangles(surface.mesh())),
+                          path = out->Path("surface.obj"), origin = state->origin] { return WriteObj(*mesh, path, origin); });
+  return Status::Ok();
 }
 
 }  // namespace pqlayout

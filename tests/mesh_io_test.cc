@@ -9,6 +9,7 @@
 
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_validation.h"
+#include "tests/run_helpers.h"
 #include "tests/test_meshes.h"
 
 namespace pqlayout {
@@ -48,6 +49,24 @@ TEST(MeshIo, ObjRoundTripKeepsDoublePrecision) {
   TriMesh back;
   ASSERT_TRUE(ReadSurfaceMesh(dir + "/m.obj", &back).ok());
   ExpectSameSoupGeometry(soup, back, 1e-10);
+}
+
+// surface.obj is written from a copy on the writer's thread (stage surface): the same bytes as
+// the mesh's own writer, with a georeferenced origin added and a -0 coordinate kept.
+TEST(MeshIo, ObjFromCopiedTrianglesIsTheSameBytes) {
+  const auto dir = TempDir();
+  PolygonSoup soup = CurvedGrid();
+  soup.points[3].x() = -0.0;
+  const TriMesh mesh = testing::ToMesh(soup);
+  for (const Eigen::Vector3d& origin : {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(529000.25, 181000.5, 0.0)}) {
+    ASSERT_TRUE(WriteMesh(mesh, dir + "/own.obj", origin).ok());
+    const TriangleArrays copy = CopyTriangles(mesh);
+    ASSERT_EQ(copy.triangles.size(), mesh.n_faces());
+    ASSERT_TRUE(WriteObj(copy, dir + "/copy.obj", origin).ok());
+    const std::string own = testing::ReadFile(dir + "/own.obj");
+    EXPECT_GT(own.size(), 100u);
+    EXPECT_EQ(testing::ReadFile(dir + "/copy.obj"), own);
+  }
 }
 
 TEST(MeshIo, PlyRoundTrip) {
