@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <new>
 #include <string>
+#include <thread>
+#include <utility>
 
 #include "solver/front_kernels.h"
 #include "solver/nested_dissection.h"
@@ -194,6 +196,7 @@ void SupernodalCholesky::Analyze(const Lower& C) {
 Status SupernodalCholesky::Factorize(const Eigen::SparseMatrix<double>& A, const std::vector<int>& perm) {
   factorized_ = false;
   failed_row_ = -1;
+  second_thread_supernodes_ = 0;
   if (A.rows() != A.cols() || A.rows() == 0 || !A.isCompressed())
     return Status::InvalidInput("supernodal Cholesky: the matrix is not square, empty or not compressed (" +
                                 std::to_string(A.rows()) + " x " + std::to_string(A.cols()) + ")");
@@ -227,66 +230,155 @@ Status SupernodalCholesky::Factorize(const Eigen::SparseMatrix<double>& A, const
 // Supernodes in order (a postorder of their tree), each front assembled from A's columns and
 // its children's update matrices, which lie on top of the update stack in the children's order
 // (LIFO: each subtree leaves only its root's update behind). L is one array, the stack and the
-// front one buffer each, sized beforehand: at 479k unknowns a vector per supernode spent more
-// time in page faults than in arithmetic.
+// front one buffer each per thread, sized beforehand: at 479k unknowns a vector per supernode
+// spent more time in page faults than in arithmetic.
+//
+// Two threads where the machine has them: below the root's chain, the first supernode with two
+// or more children (with a nested-dissection order, the top separator) has independent subtrees,
+// split into two runs of consecutive subtrees with about the same flops, each factored on its own
+// thread with its own buffers; then the rest. Every front is assembled and factored by the same
+// code in the same order of sums whichever thread runs it (its children's updates added in the
+// children's order, wherever they lie), so L is the same to the bit on any number of threads.
+struct SupernodalCholesky::Workspace {
+  LargeArray front, stack;
+  std::vector<int> local;  // a row's position in the current front
+  size_t top = 0;
+  int failed_supernode = -1, failed_column = -1;
+};
+
+namespace {
+
+// A run of supernodes [begin, end) in postorder.
+using SupernodeRun = std::pair<int, int>;
+
+// The two threads' runs (empty if there is no split; see above). kids: each supernode's children
+// in order; flops: each supernode's own.
+std::pair<SupernodeRun, SupernodeRun> SplitForTwoThreads(const std::vector<std::vector<int>>& kids,
+                                                           const std::vector<double>& flops) {
+  const int supernodes = static_cast<int>(kids.size());
+  if (supernodes == 0) return {};
+  std::vector<int> first_descendant(supernodes);
+  std::vector<double> subtree(supernodes);
+  for (int s = 0; s < supernodes; ++s) {  // postorder: every child before its parent
+    first_descendant[s] = kids[s].empty() ? s : first_descendant[kids[s].front()];
+    subtree[s] = flops[s];
+    for (const int c : kids[s]) subtree[s] += subtree[c];
+  }
+  int split = supernodes - 1;  // the last root
+  while (kids[split].size() == 1) split = kids[split].front();
+  const std::vector<int>& k = kids[split];
+  if (k.size() < 2) return {};
+  double total = 0.0, left = 0.0, best = -1.0;
+  for (const int c : k) total += subtree[c];
+  size_t cut = 1;
+  for (size_t t = 1; t < k.size(); ++t) {
+    left += subtree[k[t - 1]];
+    const double smaller = std::min(left, total - left);
+    if (smaller > best) best = smaller, cut = t;
+  }
+  return {{first_descendant[k.front()], k[cut - 1] + 1}, {first_descendant[k[cut]], k.back() + 1}};
+}
+
+}  // namespace
+
+// Factors the supernodes of `nodes` in order with the buffers of w; update[c] is where child c's
+// update matrix lies (in any workspace's stack). Stops at the first supernode that is not
+// positive definite (w->failed_supernode).
+void SupernodalCholesky::FactorSupernodes(const Lower& C, const std::vector<std::vector<int>>& kids,
+                                          const std::vector<int>& nodes, std::vector<const double*>* update,
+                                          Workspace* w) {
+  if (nodes.empty()) return;
+  size_t largest_front = 0, top = 0, peak = 0;
+  std::vector<char> here(rows_.size(), 0);
+  for (const int s : nodes) here[s] = 1;
+  for (const int s : nodes) {
+    const size_t ns = first_[s + 1] - first_[s], r = rows_[s].size(), m = ns + r;
+    largest_front = std::max(largest_front, m * m);
+    for (const int c : kids[s])
+      if (here[c]) top -= rows_[c].size() * rows_[c].size();
+    if (parent_[s] != -1) top += r * r;
+    peak = std::max(peak, top);
+  }
+  w->front.Allocate(largest_front);
+  w->stack.Allocate(peak);
+  w->local.assign(n_, -1);
+  w->top = 0;
+  double* front = w->front.data();
+  for (const int s : nodes) {
+    const int f = first_[s], ns = first_[s + 1] - f;
+    const std::vector<int>& below = rows_[s];
+    const int m = ns + static_cast<int>(below.size());
+    std::fill_n(front, static_cast<size_t>(m) * m, 0.0);
+    for (int j = 0; j < ns; ++j) w->local[f + j] = j;
+    for (int a = 0; a < static_cast<int>(below.size()); ++a) w->local[below[a]] = ns + a;
+    for (int j = 0; j < ns; ++j)  // A's entries, then the children's updates (extend-add), in a fixed order
+      for (int e = C.outer[f + j]; e < C.outer[f + j + 1]; ++e)
+        front[static_cast<size_t>(j) * m + w->local[C.inner[e]]] += C.values[e];
+    for (const int c : kids[s]) {
+      const std::vector<int>& rc = rows_[c];
+      const int mc = static_cast<int>(rc.size());
+      for (int b = 0; b < mc; ++b) {
+        double* column = front + static_cast<size_t>(w->local[rc[b]]) * m;
+        const double* u = (*update)[c] + static_cast<size_t>(b) * mc;
+        for (int a = b; a < mc; ++a) column[w->local[rc[a]]] += u[a];
+      }
+      if (here[c]) w->top -= static_cast<size_t>(mc) * mc;  // LIFO: its children's were on top
+    }
+    const int failed = front_kernels::FactorFront(front, m, ns);
+    if (failed >= 0) {
+      w->failed_supernode = s;
+      w->failed_column = f + failed;
+      return;
+    }
+    std::copy_n(front, static_cast<size_t>(m) * ns, factor_.data() + offset_[s]);
+    const int r = m - ns;
+    if (parent_[s] != -1) {
+      double* out = w->stack.data() + w->top;
+      for (int b = 0; b < r; ++b) std::copy_n(front + static_cast<size_t>(ns + b) * m + ns, r, out + static_cast<size_t>(b) * r);
+      (*update)[s] = out;
+      w->top += static_cast<size_t>(r) * r;
+    }
+  }
+}
+
 Status SupernodalCholesky::FactorizeNumeric(const Lower& C) {
   const int supernodes = static_cast<int>(rows_.size());
   std::vector<std::vector<int>> kids(supernodes);
   for (int s = 0; s < supernodes; ++s)
     if (parent_[s] != -1) kids[parent_[s]].push_back(s);
   offset_.assign(supernodes + 1, 0);
-  size_t largest_front = 0, stack_top = 0, stack_peak = 0;
+  std::vector<double> flops(supernodes);
   for (int s = 0; s < supernodes; ++s) {
-    const size_t ns = first_[s + 1] - first_[s], r = rows_[s].size(), m = ns + r;
+    const size_t ns = first_[s + 1] - first_[s], m = ns + rows_[s].size();
     offset_[s + 1] = offset_[s] + m * ns;
-    largest_front = std::max(largest_front, m * m);
-    for (const int c : kids[s]) stack_top -= rows_[c].size() * rows_[c].size();
-    if (parent_[s] != -1) stack_top += r * r;
-    stack_peak = std::max(stack_peak, stack_top);
+    flops[s] = static_cast<double>(m) * m * ns;
   }
   factor_.Allocate(offset_[supernodes]);
-  LargeArray front, stack;
-  front.Allocate(largest_front);
-  stack.Allocate(stack_peak);
-  std::vector<int> local(n_, -1);
-  stack_top = 0;
+  std::vector<const double*> update(supernodes, nullptr);
+  const auto [a, b] = threads_ > 1 ? SplitForTwoThreads(kids, flops) : std::pair<SupernodeRun, SupernodeRun>{};
+  std::vector<int> nodes_a, nodes_b, before, after;  // before: other trees; after: the split and its ancestors
   for (int s = 0; s < supernodes; ++s) {
-    const int f = first_[s], ns = first_[s + 1] - f;
-    const std::vector<int>& below = rows_[s];
-    const int m = ns + static_cast<int>(below.size());
-    std::fill_n(front.data(), static_cast<size_t>(m) * m, 0.0);
-    for (int j = 0; j < ns; ++j) local[f + j] = j;
-    for (int a = 0; a < static_cast<int>(below.size()); ++a) local[below[a]] = ns + a;
-    for (int j = 0; j < ns; ++j)  // A's entries, then the children's updates (extend-add), in a fixed order
-      for (int e = C.outer[f + j]; e < C.outer[f + j + 1]; ++e)
-        front.data()[static_cast<size_t>(j) * m + local[C.inner[e]]] += C.values[e];
-    size_t children = 0;
-    for (const int c : kids[s]) children += rows_[c].size() * rows_[c].size();
-    const double* update = stack.data() + stack_top - children;
-    for (const int c : kids[s]) {
-      const std::vector<int>& rc = rows_[c];
-      const int mc = static_cast<int>(rc.size());
-      for (int b = 0; b < mc; ++b) {
-        double* column = front.data() + static_cast<size_t>(local[rc[b]]) * m;
-        const double* u = update + static_cast<size_t>(b) * mc;
-        for (int a = b; a < mc; ++a) column[local[rc[a]]] += u[a];
-      }
-      update += static_cast<size_t>(mc) * mc;
-    }
-    stack_top -= children;
-    const int failed = front_kernels::FactorFront(front.data(), m, ns);
-    if (failed >= 0) {
-      failed_row_ = perm_[f + failed];
-      return Status::Internal("supernodal Cholesky: the matrix is not positive definite (row " +
-                              std::to_string(failed_row_) + ")");
-    }
-    std::copy_n(front.data(), static_cast<size_t>(m) * ns, factor_.data() + offset_[s]);
-    const int r = m - ns;
-    if (parent_[s] != -1) {
-      for (int b = 0; b < r; ++b)
-        std::copy_n(front.data() + static_cast<size_t>(ns + b) * m + ns, r, stack.data() + stack_top + static_cast<size_t>(b) * r);
-      stack_top += static_cast<size_t>(r) * r;
-    }
+    if (s >= a.first && s < a.second) nodes_a.push_back(s);
+    else if (s >= b.first && s < b.second) nodes_b.push_back(s);
+    else (s < a.first || a.first == a.second ? before : after).push_back(s);
+  }
+  // Each run its own buffers, kept until the end: a run's stack holds the updates that the
+  // next run's supernodes read (the split's children's, for `after`).
+  Workspace w_before, w_a, w_b, w_after;
+  FactorSupernodes(C, kids, before, &update, &w_before);
+  if (w_before.failed_supernode < 0) {
+    std::thread worker;
+    if (!nodes_b.empty()) worker = std::thread([&] { FactorSupernodes(C, kids, nodes_b, &update, &w_b); });
+    second_thread_supernodes_ = static_cast<int>(nodes_b.size());
+    FactorSupernodes(C, kids, nodes_a, &update, &w_a);
+    if (worker.joinable()) worker.join();
+    if (w_a.failed_supernode < 0 && w_b.failed_supernode < 0) FactorSupernodes(C, kids, after, &update, &w_after);
+  }
+  for (const Workspace* w : {&w_before, &w_a, &w_b, &w_after}) {  // the first in postorder, as one thread would find it
+    if (w->failed_supernode < 0) continue;
+    failed_row_ = perm_[w->failed_column];
+    return Status::Internal("supernodal Cholesky: the matrix is not positive definite (row " + std::to_string(failed_row_) +
+                            ")");
   }
   factorized_ = true;
   return Status::Ok();

@@ -15,10 +15,12 @@
 // the elimination tree (the same fill); column counts by row subtrees; fundamental supernodes,
 // merged with their parent while the explicit zeros stay few (CHOLMOD's relaxation rules);
 // then each supernode's frontal matrix assembled from A and its children's update matrices
-// (extend-add), its pivot columns factored and the rest updated in panels (FactorFront).
+// (extend-add), its pivot columns factored and the rest updated in panels (FactorFront). The
+// two halves below the top separator on two threads (set_threads): the same bits as one.
 #pragma once
 
 #include <cstddef>
+#include <thread>
 #include <vector>
 
 #include <Eigen/Core>
@@ -61,6 +63,12 @@ class SupernodalCholesky {
   double flops() const { return flops_; }        // of the last factorisation (multiply-adds × 2, explicit zeros included)
   double nonzeros() const { return nonzeros_; }  // stored entries of L, explicit zeros included
   int supernodes() const { return static_cast<int>(first_.size()) - 1; }
+  // Threads for Factorize: 2 (default, where the machine has 2 hardware threads or more) factors
+  // the two halves below the top separator side by side; 1 does all on the calling thread. The
+  // same bits either way (FactorizeNumeric).
+  void set_threads(int threads) { threads_ = threads; }
+  // Supernodes of the last factorisation factored on the second thread (0: one thread).
+  int second_thread_supernodes() const { return second_thread_supernodes_; }
 
  private:
   struct Lower {  // the permuted matrix's lower triangle, by columns
@@ -70,10 +78,15 @@ class SupernodalCholesky {
   Lower Permuted(const Eigen::SparseMatrix<double>& A) const;
   void Analyze(const Lower& C);                 // supernodes and their row structures
   Status FactorizeNumeric(const Lower& C);
+  struct Workspace;
+  void FactorSupernodes(const Lower& C, const std::vector<std::vector<int>>& kids, const std::vector<int>& nodes,
+                        std::vector<const double*>* update, Workspace* w);
 
   int n_ = 0;
   bool factorized_ = false;
   int failed_row_ = -1;
+  int threads_ = std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+  int second_thread_supernodes_ = 0;
   double flops_ = 0.0, nonzeros_ = 0.0;
   std::vector<int> perm_, inverse_;             // final: new → old row, old → new
   std::vector<int> first_;                      // supernode s: columns first_[s] … first_[s + 1] − 1

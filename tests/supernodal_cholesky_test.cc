@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -69,21 +70,28 @@ TEST(SupernodalCholesky, MatchesDenseCholeskyUnderEveryOrdering) {
 }
 
 // A membrane matrix (cotangent stiffness of a dome, its rim held) large enough for fronts wider
-// than a panel (kPanel = 32) and for relaxed supernodes: the same solution as CHOLMOD's.
-TEST(SupernodalCholesky, MatchesCholmodOnAMembraneMatrix) {
+// than a panel (kPanel = 32) and for relaxed supernodes, with its interior points.
+Eigen::SparseMatrix<double> DomeMembrane(std::vector<Eigen::Vector3d>* points) {
   const SurfaceModel s(testing::GeneratedMesh("dome", 30.0, 30.0, 5.0, 0.25));
   const Eigen::SparseMatrix<double> K = CotanStiffness(s);
   std::vector<int> unknown(s.num_vertices(), -1);
-  std::vector<Eigen::Vector3d> points;
   int n = 0;
   for (int v = 0; v < s.num_vertices(); ++v)
-    if (!s.is_boundary(v)) unknown[v] = n++, points.push_back(s.position(v));
+    if (!s.is_boundary(v)) unknown[v] = n++, points->push_back(s.position(v));
   std::vector<Eigen::Triplet<double>> t;
   for (int j = 0; j < K.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(K, j); it; ++it)
       if (unknown[it.row()] >= 0 && unknown[j] >= 0) t.emplace_back(unknown[it.row()], unknown[j], it.value());
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+// The same solution as CHOLMOD's.
+TEST(SupernodalCholesky, MatchesCholmodOnAMembraneMatrix) {
+  std::vector<Eigen::Vector3d> points;
+  const Eigen::SparseMatrix<double> A = DomeMembrane(&points);
+  const int n = static_cast<int>(A.rows());
   ASSERT_GT(n, 10000);
   const Eigen::VectorXd b = RandomVector(n, 11);
   CholmodSolver cholmod;
@@ -97,6 +105,63 @@ TEST(SupernodalCholesky, MatchesCholmodOnAMembraneMatrix) {
   EXPECT_LT((A * x - b).norm(), 1e-12 * b.norm());
   EXPECT_LT(factor.supernodes(), n / 4);
   EXPECT_GT(factor.flops(), 0.5 * cholmod.factor_flops());  // explicit zeros add work, never remove it
+}
+
+// The halves below the top separator factored on two threads: the same bits as one thread, on
+// the dome (nested dissection: the split is the top separator), on two grids side by side (two
+// trees: the first factored before the split) and a grid under the natural order (a banded
+// tree, its supernodes a chain: nothing split).
+TEST(SupernodalCholesky, TwoThreadsGiveTheSameBitsAsOne) {
+  std::vector<Eigen::Vector3d> dome_points, grid_points;
+  const Eigen::SparseMatrix<double> dome = DomeMembrane(&dome_points);
+  const Eigen::SparseMatrix<double> grid = Grid(40, 55, 0.01, &grid_points);
+  const int g = static_cast<int>(grid.rows());
+  std::vector<Eigen::Triplet<double>> t;  // two copies of the grid, uncoupled
+  for (int copy = 0; copy < 2; ++copy)
+    for (int j = 0; j < g; ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(grid, j); it; ++it)
+        t.emplace_back(copy * g + static_cast<int>(it.row()), copy * g + j, it.value());
+  Eigen::SparseMatrix<double> forest(2 * g, 2 * g);
+  forest.setFromTriplets(t.begin(), t.end());
+  std::vector<Eigen::Vector3d> forest_points = grid_points;
+  for (const auto& p : grid_points) forest_points.push_back(p + Eigen::Vector3d(100.0, 0.0, 0.0));
+  std::vector<int> natural(grid.rows());
+  std::iota(natural.begin(), natural.end(), 0);
+  const std::vector<std::pair<const Eigen::SparseMatrix<double>*, std::vector<int>>> cases = {
+      {&dome, NestedDissectionOrdering(dome, dome_points)},
+      {&forest, NestedDissectionOrdering(forest, forest_points)},
+      {&grid, natural}};
+  for (const auto& [A, perm] : cases) {
+    const Eigen::VectorXd b = RandomVector(static_cast<int>(A->rows()), 17);
+    Eigen::VectorXd x[2];
+    for (const int threads : {1, 2}) {
+      SupernodalCholesky factor;
+      factor.set_threads(threads);
+      ASSERT_TRUE(factor.Factorize(*A, perm).ok());
+      ASSERT_TRUE(factor.Solve(b, &x[threads - 1]).ok());
+      if (threads == 1 || &perm == &cases.back().second) EXPECT_EQ(factor.second_thread_supernodes(), 0);
+      else EXPECT_GT(factor.second_thread_supernodes(), factor.supernodes() / 4) << "n " << A->rows();
+    }
+    EXPECT_LT((*A * x[1] - b).norm(), 1e-12 * b.norm());
+    EXPECT_EQ(std::memcmp(x[0].data(), x[1].data(), sizeof(double) * x[0].size()), 0) << "n " << A->rows();
+  }
+}
+
+// A row that is not positive definite is named whichever thread's half it lies in.
+TEST(SupernodalCholesky, NamesTheFailingRowOnTwoThreads) {
+  std::vector<Eigen::Vector3d> points;
+  const Eigen::SparseMatrix<double> grid = Grid(60, 70, 0.01, &points);
+  const std::vector<int> perm = NestedDissectionOrdering(grid, points);
+  for (const int row : {0, 1234, 2100, 4199, perm.back()}) {
+    Eigen::SparseMatrix<double> A = grid;
+    A.coeffRef(row, row) = -1.0;
+    for (const int threads : {1, 2}) {
+      SupernodalCholesky factor;
+      factor.set_threads(threads);
+      EXPECT_EQ(factor.Factorize(A, perm).code(), StatusCode::kInternal);
+      EXPECT_EQ(factor.failed_row(), row) << threads << " threads";
+    }
+  }
 }
 
 TEST(SupernodalCholesky, NamesTheRowThatIsNotPositiveDefinite) {
