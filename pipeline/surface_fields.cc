@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "geometry/field_writers.h"
+#include "geometry/mesh_io.h"
 
 namespace pqlayout {
 
@@ -26,13 +27,11 @@ void WriteSurfaceFieldsVtkInBackground(const PipelineState& state, OutputFiles* 
     fields->vertex_scalars.push_back({"phi", state.levelsets.phi});
     fields->vertex_scalars.push_back({"psi", state.levelsets.psi});
   }
-  auto points = std::make_shared<std::vector<Eigen::Vector3d>>(surface.num_vertices());
-  for (int v = 0; v < surface.num_vertices(); ++v) (*points)[v] = surface.position(v) + state.origin;
-  auto triangles = std::make_shared<std::vector<std::array<int, 3>>>(surface.num_faces());
-  for (int f = 0; f < surface.num_faces(); ++f) (*triangles)[f] = surface.face_vertices(f);
-  out->WriteInBackground([fields, points, triangles, path = out->Path("fields.vtk")] {
+  auto mesh = std::make_shared<TriangleArrays>(CopyTriangles(surface.mesh()));
+  for (Eigen::Vector3d& p : mesh->points) p += state.origin;
+  out->WriteInBackground([fields, mesh, path = out->Path("fields.vtk")] {
     const auto start = std::chrono::steady_clock::now();
-    PQ_RETURN_IF_ERROR(WriteFieldsVtk(*points, *triangles, *fields, path));
+    PQ_RETURN_IF_ERROR(WriteFieldsVtk(mesh->points, mesh->triangles, *fields, path));
     LOG(INFO) << "fields.vtk written in "
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s (in the background)";
     return Status::Ok();
