@@ -137,28 +137,30 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
 // for φ, ψ: the crossing rounds, the final metrics and whatever the caller's layers do after.
 using Finish = std::function<Status()>;
 
-// levelset.alongside: whether a second layout that may be needed — the poles' (SolveLevelSets)
-// and the cone's retry (SolveOnMesh) — is solved on a second thread beside the first from the
-// start. Each solve is single-threaded on its own data, so the outputs are the same either way.
-// "auto": only with at least kAlongsideThreads hardware threads: on the 2-core machine the two
-// solves slowed each other down (the first layout's level sets 1.13× as long), a pure loss
-// where the second layout is not needed (benchmarks/RESULTS.md, "The second layouts alongside
-// the first").
-inline constexpr unsigned kAlongsideThreads = 4;
-inline bool SolveAlongside(const LevelsetOptions& options) {
-  if (options.alongside == "auto") return std::thread::hardware_concurrency() >= kAlongsideThreads;
-  return options.alongside == "true";
-}
+// levelset.alongside: how many second layouts that may be needed — the poles' (SolveLevelSets)
+// and the cone's retry (SolveOnMesh) — may be solved at once on threads of their own beside the
+// first from the start, in the whole process: "false" none, "true" no limit, "auto" the hardware
+// threads less one (one on a 2-core machine, so that every solve has a core). Each solve is
+// single-threaded on its own data, so the outputs are the same either way. One that turns out
+// not to be needed is cancelled as soon as that is known; what it then cost is the first
+// layout's time while both ran (on the 2-core machine the example's level sets 1.12× as long,
+// its cone's retry not needed), against ~0.7× where it is needed: over the corpus the level
+// sets took 0.85× as long (benchmarks/RESULTS.md, "The second layouts alongside the first,
+// cancelled when not needed").
+int AlongsideBudget(const LevelsetOptions& options);
 // One solve on a second thread (levelset.alongside), joined however the scope is left (a
 // std::thread destroyed joinable would end the process); an exception thrown in it
 // (std::bad_alloc) becomes its Status instead. Left without Join (the first layout failed,
-// so the second is not wanted), it is cancelled first: its Ceres solves end within one
-// iteration (ThreadCancelled) instead of running to their end before the failure is reported.
+// or the second is not needed), it is cancelled first: its Ceres solves end within one
+// iteration (ThreadCancelled) instead of running to their end.
 class AlongsideSolve {
  public:
+  static constexpr int kNoLimit = 1 << 30;
   // On a thread started by Start: its solves' log lines say so ("levelset: (alongside) phi: …"),
   // since they interleave with the first layout's, whose names they share where the report's do.
   static bool OnThisThread() { return on_this_thread_; }
+  // Solves now running alongside, in the whole process.
+  static int Running() { return running_.load(); }
   AlongsideSolve() = default;
   AlongsideSolve(const AlongsideSolve&) = delete;
   AlongsideSolve& operator=(const AlongsideSolve&) = delete;
@@ -166,7 +168,13 @@ class AlongsideSolve {
     cancel_ = true;
     if (thread_.joinable()) thread_.join();
   }
-  void Start(std::function<Status()> solve) {
+  // Starts `solve` on a thread of its own unless `budget` solves already run alongside
+  // (AlongsideBudget); whether it started. At most once per object.
+  bool Start(std::function<Status()> solve, int budget = kNoLimit) {
+    int running = running_.load();
+    do {
+      if (running >= budget) return false;
+    } while (!running_.compare_exchange_weak(running, running + 1));
     thread_ = std::thread([this, solve = std::move(solve)] {
       on_this_thread_ = true;
       SetThreadCancelFlag(&cancel_);
@@ -176,8 +184,11 @@ class AlongsideSolve {
         status_ = Status::Internal(std::string("levelset: a solve alongside failed: ") + e.what());
       }
       SetThreadCancelFlag(nullptr);
+      running_.fetch_sub(1);  // its core is free for another
     });
+    return true;
   }
+  bool started() const { return thread_.joinable(); }
   // Its Status once it has ended (Ok if never started).
   Status Join() {
     if (thread_.joinable()) thread_.join();
@@ -186,6 +197,7 @@ class AlongsideSolve {
 
  private:
   static inline thread_local bool on_this_thread_ = false;
+  static inline std::atomic<int> running_{0};
   std::atomic<bool> cancel_{false};
   std::thread thread_;
   Status status_ = Status::Ok();
@@ -209,7 +221,7 @@ using LayoutSolve = std::function<Status(LevelSetSolution* out, Finish* finish)>
 // The layout without poles, or with poles at the crowns (caps) where it misaligns or folds over
 // and they align clearly better; alongside (levelset.alongside): the poles' layout solved on a
 // second thread from the start.
-Status ChoosePoles(std::vector<LevelSetCap> caps, const LayoutSolve& plain, const LayoutSolve& poles, bool alongside,
+Status ChoosePoles(std::vector<LevelSetCap> caps, const LayoutSolve& plain, const LayoutSolve& poles, int alongside_budget,
                    LevelSetSolution* solution);
 
 }  // namespace pqlayout::levelset_internal

@@ -93,7 +93,7 @@ Status CutCaps(const SurfaceModel& s, const GuidanceField& g, std::vector<LevelS
 
 // The layout with poles at the crowns (caps) or without: plain and poles solve each into
 // their LevelSetSolution (with a Finish: to the joint solve, the rest left there).
-Status ChoosePoles(std::vector<LevelSetCap> caps, const LayoutSolve& plain, const LayoutSolve& poles, bool alongside,
+Status ChoosePoles(std::vector<LevelSetCap> caps, const LayoutSolve& plain, const LayoutSolve& poles, int alongside_budget,
                    LevelSetSolution* solution) {
   // The layout without poles first. Poles are tried only if it misses the alignment target
   // (kPoleTryAbove, report.json's) or folds over: a pole buys alignment at the crown with the
@@ -110,20 +110,17 @@ Status ChoosePoles(std::vector<LevelSetCap> caps, const LayoutSolve& plain, cons
   // leave a fold-over, the poles are tried as a whole layout and compared finished.
   // levelset.alongside: the poles' layout, to its joint solves, on a second thread from the
   // start, in case it is needed (plain and poles read nothing the other writes; each finish
-  // runs here, on this thread).
+  // runs here, on this thread). It goes on while the plain layout is finished, and is joined
+  // only once it is needed; a plain layout that aligns and does not fold over cancels it (its
+  // Ceres solve ends within one iteration) instead of waiting for it.
   Finish finish_plain, finish_poles;
   LevelSetSolution with_poles;
-  Status poles_status = Status::Ok();
-  {
-    AlongsideSolve ahead;
-    if (alongside) {
-      LOG(INFO) << "levelset: " << caps.size() << " crown(s) of the guidance: the layout with poles there solved "
-                << "alongside, in case it is needed";
-      ahead.Start([&] { return poles(&with_poles, &finish_poles); });
-    }
-    PQ_RETURN_IF_ERROR(plain(solution, &finish_plain));
-    poles_status = ahead.Join();
-  }
+  AlongsideSolve ahead;  // after what its thread writes: destroyed (cancelled, joined) first
+  const bool alongside = ahead.Start([&] { return poles(&with_poles, &finish_poles); }, alongside_budget);
+  if (alongside)
+    LOG(INFO) << "levelset: " << caps.size() << " crown(s) of the guidance: the layout with poles there solved "
+              << "alongside, in case it is needed";
+  PQ_RETURN_IF_ERROR(plain(solution, &finish_plain));
   bool finished = false;
   if (solution->metrics.alignment_rms_deg_strong <= kPoleTryAbove) {
     PQ_RETURN_IF_ERROR(finish_plain());
@@ -147,7 +144,7 @@ Status ChoosePoles(std::vector<LevelSetCap> caps, const LayoutSolve& plain, cons
   if (!alongside) {
     PQ_RETURN_IF_ERROR(poles(&with_poles, finished ? nullptr : &finish_poles));
   } else {
-    PQ_RETURN_IF_ERROR(poles_status);
+    PQ_RETURN_IF_ERROR(ahead.Join());
     if (finished) PQ_RETURN_IF_ERROR(finish_poles());  // as if solved whole: the plain layout was
   }
   const LevelSetMetrics a = with_poles.metrics, b = solution->metrics;

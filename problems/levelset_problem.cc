@@ -186,6 +186,10 @@ struct MeshSolveState {
   std::vector<double> phi0, psi0;  // the initial guess
   std::unique_ptr<LevelSetProblem> problem;
   std::unique_ptr<ConeSolve> cone_solve;  // solved alongside the first (levelset.alongside), or null
+  // The cone's solve on its thread (with cone_solve), until TryTipCone joins it or, not needed,
+  // cancels it. Last: destroyed first, so that a solve still running is cancelled and joined
+  // before anything it reads goes.
+  std::unique_ptr<AlongsideSolve> alongside;
 };
 // From the initial guess to the joint solve, into *out with its problem in *problem; prefix: the
 // solves' names in the log and report ("cone_" for the retry, so that it does not overwrite the
@@ -212,12 +216,16 @@ bool MayRetryWithCone(const LevelsetOptions& options, int tips) { return options
 // first ended: tried, not kept"). The cone's solve to its joint usually ran alongside the first
 // (SolveOnMesh); its rounds run here, once it is known to be needed.
 Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSolution* solution) {
-  std::unique_ptr<ConeSolve> cone = std::move(state.cone_solve);
   const LevelSetMetrics without = solution->metrics;
   const double min_angle = state.plain.min_angle;
   if (!MayRetryWithCone(state.cone, state.problem->NumTips()) ||
-      (without.foldovers == 0 && without.faces_below_min_angle == 0) || CrossingOutOfReach(without))
+      (without.foldovers == 0 && without.faces_below_min_angle == 0) || CrossingOutOfReach(without)) {
+    state.alongside.reset();  // not needed: cancelled (its Ceres solve ends within one iteration) and joined
     return Status::Ok();
+  }
+  if (state.alongside) state.cone_solve->status = state.alongside->Join();
+  state.alongside.reset();
+  std::unique_ptr<ConeSolve> cone = std::move(state.cone_solve);
   LOG(INFO) << "levelset: " << without.faces_below_min_angle << " faces cross below " << min_angle << "° (the worst at "
             << without.min_crossing_angle_deg << "°, " << without.foldovers << " fold-overs); "
             << (cone ? "taking the second solve, alongside it, with" : "solving again with")
@@ -254,8 +262,12 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
 // seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the
 // offsets are set here. With branch points and levelset.alongside (SolveAlongside), the cone's solve
-// (TryTipCone) runs on a second thread beside the first layout's, and is joined before this
-// returns, so nothing outlives the surfaces it reads.
+// (TryTipCone) runs on a second thread beside the first layout's joint solve and its rounds,
+// until TryTipCone knows whether it is needed: then joined, or cancelled within one Ceres
+// iteration (not joined as soon as the first joint solve ended, which made the first layout
+// wait for a solve that was then thrown away). It reads s, g, seams and the state's inputs,
+// none of which the first layout writes; s, g and seams must outlive *finish, as the rounds
+// already required (the state, and with it the thread, goes with *finish).
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
                    LevelSetSeams* seams, LevelSetSolution* solution, Finish* finish) {
   if (seams != nullptr && seams->cut == nullptr) seams = nullptr;
@@ -272,8 +284,10 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
   // The whole solve from the initial guess to the joint (φ and ψ alone first with
   // levelset.separate_solves; the rounds come with `finish`).
   // Reads s, g, seams and *state, writes only *out and *problem: two can run at once.
-  const WholeSolve solve = [state, &s, &g, h, seams](const LevelsetOptions& o, const std::string& prefix,
-                                                     LevelSetSolution* out, std::unique_ptr<LevelSetProblem>* problem) {
+  // A raw state: the cone's thread holds a copy, and must not own the state that joins it.
+  const WholeSolve solve = [state = state.get(), &s, &g, h, seams](const LevelsetOptions& o, const std::string& prefix,
+                                                                   LevelSetSolution* out,
+                                                                   std::unique_ptr<LevelSetProblem>* problem) {
     out->phi = state->phi0;
     out->psi = state->psi0;
     *problem = std::make_unique<LevelSetProblem>(s, state->geo, state->edges, g, o, h, seams, state->seam_terms, out);
@@ -286,17 +300,19 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     }
     return (*problem)->SolveJoint();
   };
-  {
-    AlongsideSolve alongside;
-    const int tips = seams != nullptr ? static_cast<int>(FixedTips(*seams).size()) : 0;
-    if (SolveAlongside(options) && MayRetryWithCone(options, tips)) {
-      state->cone_solve = std::make_unique<ConeSolve>();
-      ConeSolve* cone = state->cone_solve.get();
-      alongside.Start([cone, &state, &solve] { return solve(state->cone, "cone_", &cone->solution, &cone->problem); });
+  const int tips = seams != nullptr ? static_cast<int>(FixedTips(*seams).size()) : 0;
+  if (MayRetryWithCone(options, tips)) {
+    state->cone_solve = std::make_unique<ConeSolve>();
+    state->alongside = std::make_unique<AlongsideSolve>();
+    ConeSolve* cone = state->cone_solve.get();
+    const LevelsetOptions* cone_options = &state->cone;
+    if (!state->alongside->Start([cone, cone_options, solve] { return solve(*cone_options, "cone_", &cone->solution, &cone->problem); },
+                                 AlongsideBudget(options))) {
+      state->alongside.reset();
+      state->cone_solve.reset();
     }
-    PQ_RETURN_IF_ERROR(solve(state->plain, "", solution, &state->problem));
-    if (state->cone_solve) state->cone_solve->status = alongside.Join();
   }
+  PQ_RETURN_IF_ERROR(solve(state->plain, "", solution, &state->problem));
   const auto rounds = [state, solve, solution]() {
     PQ_RETURN_IF_ERROR(state->problem->Rounds());
     solution->metrics = state->problem->Measure();

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
+#include <thread>
 
 #include "base/parallel_ranges.h"
 #include "geometry/closest_point.h"
@@ -20,6 +21,12 @@ namespace pqlayout {
 using namespace levelset_internal;
 
 namespace levelset_internal {
+
+int AlongsideBudget(const LevelsetOptions& options) {
+  if (options.alongside == "true") return AlongsideSolve::kNoLimit;
+  if (options.alongside == "false") return 0;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency())) - 1;  // "auto"
+}
 
 // The guidance on the working mesh: each working face takes the direction (projected into
 // its plane) and weight of the reference face closest to its centroid.
@@ -430,6 +437,6 @@ Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const Level
     out->working_edge = working_edge;
     return SolveOnWorking(s, holed, holed_guidance, options, h, out, true, finish);
   };
-  return ChoosePoles(std::move(caps), plain, poles, SolveAlongside(options), solution);
+  return ChoosePoles(std::move(caps), plain, poles, AlongsideBudget(options), solution);
 }
 }  // namespace pqlayout

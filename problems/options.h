@@ -121,12 +121,12 @@ struct LevelsetOptions {
   // draw (benchmarks/RESULTS.md, "The cone's spacing round the branch points").
   double tip_cone_radius = 1.5;
   // Whether the second layouts that may be needed — that second solve, and the layout with
-  // poles (levelset.poles) — are started on a second thread as the first layout's begins:
-  // "true", "false" (one thread, each only once it is needed) or "auto" (true on a machine with
-  // at least 4 hardware threads: SolveAlongside). Each solve is single-threaded on its own data,
-  // so the outputs are the same either way. On the 2-core machine the level sets took ~0.7× as
-  // long where the second layout was needed, but 1.13–2× where it was not (its work thrown away,
-  // the two solves slowing each other down): benchmarks/RESULTS.md, "The second layouts alongside the first".
+  // poles (levelset.poles) — are started on threads of their own as the first layout's begins:
+  // "true", "false" (one thread, each only once it is needed) or "auto" (as many at once as the
+  // machine has hardware threads less one: AlongsideBudget). One that turns out not to be needed
+  // is cancelled as soon as that is known. Each solve is single-threaded on its own data, so the
+  // outputs are the same either way (benchmarks/RESULTS.md, "The second layouts alongside the
+  // first, cancelled when not needed").
   std::string alongside = "auto";
   // Whether φ is solved alone and then ψ with φ held before the joint solve (the paper's order),
   // or the joint solve starts from the initial guess (the default since 2026-12-06: over the

@@ -5,6 +5,7 @@
 // (initial and final cost to the last bit, iterations), every metric and the kept end identical.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <string>
@@ -100,6 +101,43 @@ TEST(Alongside, LeftWithoutJoinTheSolveIsCancelled) {
   }  // as PQ_RETURN_IF_ERROR leaves it
   EXPECT_EQ(saw.load(), 1);
   EXPECT_FALSE(ThreadCancelled());  // the flag was the worker's only
+}
+
+// The budget counts the solves alongside in the whole process: with a budget of one, a second
+// Start while one runs starts nothing (the poles' layout, then the cone's retry inside either
+// layout, would otherwise make three threads where AlongsideBudget allows two).
+TEST(Alongside, AStartBeyondTheBudgetRunsNothing) {
+  const auto waits = [] { return WaitForCancel(20000) == 1 ? Status::Ok() : Status::Internal("not cancelled"); };
+  {
+    levelset_internal::AlongsideSolve first;
+    ASSERT_TRUE(first.Start(waits, 1));
+    EXPECT_EQ(levelset_internal::AlongsideSolve::Running(), 1);
+    levelset_internal::AlongsideSolve second;
+    EXPECT_FALSE(second.Start(waits, 1));
+    EXPECT_FALSE(second.started());
+    EXPECT_TRUE(second.Join().ok());  // never started: Ok
+    levelset_internal::AlongsideSolve unlimited;
+    EXPECT_TRUE(unlimited.Start(waits));
+    EXPECT_EQ(levelset_internal::AlongsideSolve::Running(), 2);
+    levelset_internal::AlongsideSolve none;
+    EXPECT_FALSE(none.Start(waits, 0));
+  }  // both cancelled and joined
+  EXPECT_EQ(levelset_internal::AlongsideSolve::Running(), 0);
+  levelset_internal::AlongsideSolve again;
+  EXPECT_TRUE(again.Start(waits, 1));  // the budget is free once a solve has ended
+}
+
+// "auto" leaves a core to the first layout (one solve alongside on 2 cores); "true" has no
+// limit, "false" starts none.
+TEST(Alongside, TheBudgetFollowsTheKey) {
+  LevelsetOptions options;
+  options.alongside = "false";
+  EXPECT_EQ(levelset_internal::AlongsideBudget(options), 0);
+  options.alongside = "true";
+  EXPECT_EQ(levelset_internal::AlongsideBudget(options), levelset_internal::AlongsideSolve::kNoLimit);
+  options.alongside = "auto";
+  EXPECT_EQ(levelset_internal::AlongsideBudget(options),
+            std::max(1, static_cast<int>(std::thread::hardware_concurrency())) - 1);
 }
 
 TEST(Alongside, JoinedTheSolveRunsToItsEnd) {
