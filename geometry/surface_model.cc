@@ -25,7 +25,7 @@ void SurfaceModel::IndexClosestPointsInBackground() const {
               }).share();
 }
 
-SurfaceModel::SurfaceModel(TriMesh mesh) : mesh_(std::move(mesh)) {
+SurfaceModel::SurfaceModel(std::unique_ptr<TriMesh> mesh) : owned_(std::move(mesh)), mesh_(*owned_) {
   ComputeFaceQuantities();
   ComputeBoundaryLoops();
 }

@@ -29,7 +29,10 @@ class ClosestPointQuery;
 class SurfaceModel {
  public:
   // Takes a valid triangle mesh (see ValidateSurfaceMesh); computes all cached quantities.
-  explicit SurfaceModel(TriMesh mesh);
+  // OpenMesh's meshes have no move constructor (a user-declared virtual destructor), so a
+  // TriMesh passed on is copied (0.1–0.2 s at 1M triangles): the reference is handed over on the heap.
+  explicit SurfaceModel(std::unique_ptr<TriMesh> mesh);
+  explicit SurfaceModel(const TriMesh& mesh) : SurfaceModel(std::make_unique<TriMesh>(mesh)) {}
 
   const TriMesh& mesh() const { return mesh_; }
   // Non-const access is for attaching named per-element fields only; never move vertices.
@@ -94,7 +97,8 @@ class SurfaceModel {
   void ComputeFaceQuantities();
   void ComputeBoundaryLoops();
 
-  TriMesh mesh_;
+  std::unique_ptr<TriMesh> owned_;
+  TriMesh& mesh_;  // *owned_
   std::vector<std::array<int, 3>> face_vertices_;
   std::vector<double> face_area_;
   std::vector<Eigen::Vector3d> face_normal_;

@@ -72,11 +72,11 @@ nlohmann::json SupportCounts(const VertexConditions& supports) {
 
 Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* metrics) {
   const Config& config = state->config;
-  TriMesh mesh;
+  auto mesh = std::make_unique<TriMesh>();  // handed to the SurfaceModel without a copy
   std::string source;
   std::vector<int> file_vertex;  // empty for a generated surface
-  PQ_RETURN_IF_ERROR(LoadOrGenerate(config.surface, &mesh, &source, &file_vertex));
-  state->origin = MoveToLocalFrame(&mesh);
+  PQ_RETURN_IF_ERROR(LoadOrGenerate(config.surface, mesh.get(), &source, &file_vertex));
+  state->origin = MoveToLocalFrame(mesh.get());
   if (!state->origin.isZero())
     LOG(INFO) << "surface: " << source << " is georeferenced: solved in a local frame whose origin is ("
               << state->origin.x() << ", " << state->origin.y() << ", " << state->origin.z()
