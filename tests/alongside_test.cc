@@ -79,6 +79,21 @@ TEST(Alongside, ThePolesLayoutGivesTheSameLevelSets) {
   EXPECT_EQ(kept, LevelsetStage("corpus/wavy.yaml", wavy, false, "poles_wavy"));
 }
 
+// Both second layouts started and neither needed: the square dome × strain draft has a crown
+// (the poles' layout, alongside) and branch points (the cone's retry, alongside too without a
+// budget), but aligns to 6.0° and crosses at 30° without them, so both are cancelled while the
+// first layout's rounds run or once they end — and the level sets are those of one thread.
+TEST(Alongside, SecondLayoutsNotNeededAreCancelledWithTheSameLevelSets) {
+  const std::vector<std::string> sets{"guidance.source=strain", "levelset.draft=true"};
+  const nlohmann::json alongside = LevelsetStage("corpus/dome_square.yaml", sets, true, "cancelled");
+  ASSERT_TRUE(alongside.contains("poles_not_kept"));
+  EXPECT_FALSE(alongside.at("poles_not_kept").at("tried").get<bool>());
+  EXPECT_FALSE(alongside.contains("tip_cone"));  // the retry was not needed
+  EXPECT_FALSE(alongside.at("ceres").contains("cone_joint"));
+  EXPECT_EQ(alongside, LevelsetStage("corpus/dome_square.yaml", sets, false, "cancelled"));
+  EXPECT_EQ(levelset_internal::AlongsideSolve::Running(), 0);  // every thread joined
+}
+
 // Waits up to ~20 s for its thread's cancel flag: 1 if it came, 0 if not (never hangs the test).
 int WaitForCancel(int max_ms) {
   for (int i = 0; i < max_ms; ++i) {
