@@ -71,8 +71,8 @@ struct RunResult {
 };
 
 Status ReadRun(const std::filesystem::path& dir, RunResult* run) {
-  TriMesh reference;
-  PQ_RETURN_IF_ERROR(ReadSurfaceMesh((dir / "surface.obj").string(), &reference));
+  auto reference = std::make_unique<TriMesh>();  // handed over without a copy (SurfaceModel)
+  PQ_RETURN_IF_ERROR(ReadSurfaceMesh((dir / "surface.obj").string(), reference.get()));
   run->surface = std::make_unique<SurfaceModel>(std::move(reference));
   PolygonSoup soup;
   PQ_RETURN_IF_ERROR(ReadPolygonSoup((dir / "quads.obj").string(), &soup));
