@@ -11,6 +11,7 @@
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <unordered_map>
 #include <unordered_set>
@@ -175,17 +176,22 @@ class AlongsideSolve {
     do {
       if (running >= budget) return false;
     } while (!running_.compare_exchange_weak(running, running + 1));
-    thread_ = std::thread([this, solve = std::move(solve)] {
-      on_this_thread_ = true;
-      SetThreadCancelFlag(&cancel_);
-      try {
-        status_ = solve();
-      } catch (const std::exception& e) {
-        status_ = Status::Internal(std::string("levelset: a solve alongside failed: ") + e.what());
-      }
-      SetThreadCancelFlag(nullptr);
-      running_.fetch_sub(1);  // its core is free for another
-    });
+    try {
+      thread_ = std::thread([this, solve = std::move(solve)] {
+        on_this_thread_ = true;
+        SetThreadCancelFlag(&cancel_);
+        try {
+          status_ = solve();
+        } catch (const std::exception& e) {
+          status_ = Status::Internal(std::string("levelset: a solve alongside failed: ") + e.what());
+        }
+        SetThreadCancelFlag(nullptr);
+        running_.fetch_sub(1);  // its core is free for another
+      });
+    } catch (const std::system_error&) {  // no thread to be had: nothing started, solved later if needed
+      running_.fetch_sub(1);
+      return false;
+    }
     return true;
   }
   bool started() const { return thread_.joinable(); }
