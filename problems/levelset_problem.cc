@@ -267,7 +267,8 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
 // iteration (not joined as soon as the first joint solve ended, which made the first layout
 // wait for a solve that was then thrown away). It reads s, g, seams and the state's inputs,
 // none of which the first layout writes; s, g and seams must outlive *finish, as the rounds
-// already required (the state, and with it the thread, goes with *finish).
+// already required (the state, and with it the thread, goes with *finish): a caller that keeps
+// them in the same closure as *finish must destroy *finish first (SolveOnWorking's WorkingFinish).
 Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
                    LevelSetSeams* seams, LevelSetSolution* solution, Finish* finish) {
   if (seams != nullptr && seams->cut == nullptr) seams = nullptr;

@@ -345,6 +345,22 @@ void InterpolateFromWorking(const SurfaceModel& s, const std::shared_ptr<const S
 }
 
 
+// The rest of a solve on the working mesh: its rounds, then the interpolation to the reference.
+// A struct rather than a lambda for the order its members go in: `rounds` may hold the cone's
+// retry still running on its thread (levelset.alongside), reading the seams and cut surface that
+// `interpolate` owns (the solution on the heap), so `rounds` goes first — cancelling and joining
+// that thread — and `interpolate` after it. A finish that is never called (ChoosePoles keeps only
+// one layout) is destroyed in that order too. (A lambda's captures go in an unspecified order:
+// ThreadSanitizer caught the seams freed before the thread was joined.)
+struct WorkingFinish {
+  std::function<Status()> interpolate;
+  Finish rounds;  // declared last: destroyed first
+  Status operator()() const {
+    PQ_RETURN_IF_ERROR(rounds());
+    return interpolate();
+  }
+};
+
 // φ, ψ solved on `working` (a remeshed or holed copy of the reference s), then interpolated
 // to the reference's vertices for the field files; extraction runs on `working`. holed: a
 // reference vertex inside a cap takes the values at its closest point on the cap's rim (not
@@ -365,10 +381,7 @@ Status SolveOnWorking(const SurfaceModel& s, std::shared_ptr<const SurfaceModel>
     return Status::Ok();
   };
   if (finish == nullptr) return interpolate();
-  *finish = [rounds, interpolate]() {
-    PQ_RETURN_IF_ERROR(rounds());
-    return interpolate();
-  };
+  *finish = WorkingFinish{interpolate, rounds};
   return Status::Ok();
 }
 
