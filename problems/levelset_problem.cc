@@ -261,7 +261,7 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
 
 // The level sets on the mesh they are solved on (see SolveLevelSets for the working mesh).
 // seams: null, or the seams s is the cut surface of, with their signs (SolveWithSeams); the
-// offsets are set here. With branch points and levelset.alongside (SolveAlongside), the cone's solve
+// offsets are set here. With branch points and levelset.alongside (AlongsideBudget), the cone's solve
 // (TryTipCone) runs on a second thread beside the first layout's joint solve and its rounds,
 // until TryTipCone knows whether it is needed: then joined, or cancelled within one Ceres
 // iteration (not joined as soon as the first joint solve ended, which made the first layout
