@@ -24,7 +24,21 @@ void BackgroundWriter::Add(std::function<Status()> task) {
   changed_.notify_all();
 }
 
+void BackgroundWriter::Hold() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  held_ = true;
+}
+
+void BackgroundWriter::Release() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    held_ = false;
+  }
+  changed_.notify_all();
+}
+
 Status BackgroundWriter::Wait() {
+  Release();
   std::unique_lock<std::mutex> lock(mutex_);
   changed_.wait(lock, [this] { return queue_.empty() && !running_task_; });
   Status failure = std::move(first_failure_);
@@ -35,7 +49,7 @@ Status BackgroundWriter::Wait() {
 void BackgroundWriter::Run() {
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
-    changed_.wait(lock, [this] { return !queue_.empty() || stopping_; });
+    changed_.wait(lock, [this] { return (!queue_.empty() && !held_) || stopping_; });
     if (queue_.empty()) return;  // stopping, and nothing left to write
     std::function<Status()> task = std::move(queue_.front());
     queue_.pop_front();

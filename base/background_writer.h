@@ -9,6 +9,11 @@
 // name, once every task added so far has ended; the destructor waits too, so that the staged
 // folder is never removed under a task still writing into it. An exception thrown in a task
 // (std::bad_alloc) becomes its Status.
+//
+// Hold keeps the tasks added from starting until Release (or Wait, or the destructor): the
+// pipeline holds them while its own stages keep both cores busy (the membrane's factor, the
+// closest-point index, the second level-set layout alongside) and lets them run once the level
+// sets are solved, beside the single-threaded stages after.
 #pragma once
 
 #include <condition_variable>
@@ -33,6 +38,8 @@ class BackgroundWriter {
   // Blocks until every task added so far has ended; the first failure among them, then
   // forgotten (Ok if none failed).
   Status Wait();
+  void Hold();
+  void Release();
 
  private:
   void Run();
@@ -42,6 +49,7 @@ class BackgroundWriter {
   std::deque<std::function<Status()>> queue_;
   bool running_task_ = false;
   bool stopping_ = false;
+  bool held_ = false;
   Status first_failure_;
   std::thread thread_;
 };

@@ -58,6 +58,9 @@ class OutputFiles {
   // from WaitForWrites, which Commit calls first.
   void WriteInBackground(std::function<Status()> write) { writer_.Add(std::move(write)); }
   Status WaitForWrites() { return writer_.Wait(); }
+  // Writes added from now on wait until ReleaseWrites (or WaitForWrites): BackgroundWriter::Hold.
+  void HoldWrites() { writer_.Hold(); }
+  void ReleaseWrites() { writer_.Release(); }
   // Moves every staged entry into the output folder (protocol above). Refuses, leaving the
   // folder as it was, if SIGINT/SIGTERM has been received (base/interrupt.h); once
   // started it runs to the end.

@@ -25,7 +25,7 @@ namespace pqlayout {
 namespace {
 
 struct Input {
-  std::unique_ptr<SurfaceModel> reference;
+  std::shared_ptr<SurfaceModel> reference;
   ExtractedMesh mesh;
   PlanarizeOptions options;
   double h = 3.0;

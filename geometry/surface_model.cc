@@ -1,5 +1,7 @@
 #include "geometry/surface_model.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,6 +25,15 @@ void SurfaceModel::IndexClosestPointsInBackground() const {
                 const ClosestPointQuery::Geometry own = std::move(geometry);  // freed once the trees are built
                 return std::make_shared<const ClosestPointQuery>(own);
               }).share();
+}
+
+void SurfaceModel::FreezeFields(const std::vector<std::string>& vertex_fields) {
+  for (const std::string& name : vertex_fields) VertexField<double>(name);
+  fields_frozen_ = true;
+}
+
+void SurfaceModel::CheckNotFrozen(bool exists, const std::string& name) const {
+  CHECK(exists || !fields_frozen_) << "field '" << name << "' created after SurfaceModel::FreezeFields";
 }
 
 SurfaceModel::SurfaceModel(std::unique_ptr<TriMesh> mesh) : owned_(std::move(mesh)), mesh_(*owned_) {

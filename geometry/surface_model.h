@@ -79,6 +79,7 @@ class SurfaceModel {
   // Named per-element fields (created on first use, shared by name afterwards).
   template <typename T>
   OpenMesh::VProp<T> VertexField(const std::string& name) {
+    CheckNotFrozen(OpenMesh::hasProperty<OpenMesh::VertexHandle, T>(mesh_, name.c_str()), name);
     return OpenMesh::VProp<T>(mesh_, name.c_str());
   }
   // A named double vertex field's values by vertex index (zeros if no stage set it).
@@ -90,10 +91,18 @@ class SurfaceModel {
   }
   template <typename T>
   OpenMesh::FProp<T> FaceField(const std::string& name) {
+    CheckNotFrozen(OpenMesh::hasProperty<OpenMesh::FaceHandle, T>(mesh_, name.c_str()), name);
     return OpenMesh::FProp<T>(mesh_, name.c_str());
   }
+  // Creates the named vertex fields (double) and then allows no new field: creating one changes
+  // the mesh's list of properties, which another thread reading the mesh (a figure drawn on the
+  // background writer) must not see change under it. Filling an existing field's values is
+  // still allowed (no reader reads them). A new field asked for after this is a programming
+  // error (CHECK).
+  void FreezeFields(const std::vector<std::string>& vertex_fields);
 
  private:
+  void CheckNotFrozen(bool exists, const std::string& name) const;
   void ComputeFaceQuantities();
   void ComputeBoundaryLoops();
 
@@ -110,6 +119,7 @@ class SurfaceModel {
   Eigen::Vector3d bbox_max_ = Eigen::Vector3d::Zero();
   mutable std::shared_ptr<const ClosestPointQuery> closest_points_;
   mutable std::shared_future<std::shared_ptr<const ClosestPointQuery>> indexing_;  // IndexClosestPointsInBackground's
+  bool fields_frozen_ = false;
 };
 
 }  // namespace pqlayout

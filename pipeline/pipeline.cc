@@ -156,6 +156,11 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
              {"stages", nlohmann::json::object()}};
   PipelineState state;
   state.config = config;
+  // The files written in the background (field tables, figures, surface.obj) wait until the
+  // level sets are solved: until then the stages keep both cores busy (the membrane's factor,
+  // the closest-point index, the second layout alongside), after it they are single-threaded.
+  const bool hold_writes = static_cast<int>(options.until) > static_cast<int>(Stage::kLevelset);
+  if (hold_writes) out->HoldWrites();
   nlohmann::json completed = nlohmann::json::array();
   for (const auto& entry : kStages) {
     if (static_cast<int>(entry.stage) > static_cast<int>(options.until)) break;
@@ -173,14 +178,18 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
       PQ_RETURN_IF_ERROR(CheckSupportsHoldTheFrameInPlan(state.supports));
     // The reference's closest-point index, which levelset (a large reference's working mesh),
     // extract, planarize and stiffen query, built on the second core during membrane and guidance.
-    if (entry.stage == Stage::kSurface && static_cast<int>(options.until) >= static_cast<int>(Stage::kLevelset))
+    // So is levelset's working mesh (problems/levelset.h), on a thread of its own.
+    if (entry.stage == Stage::kSurface && static_cast<int>(options.until) >= static_cast<int>(Stage::kLevelset)) {
       state.surface->IndexClosestPointsInBackground();
+      state.working_mesh = MakeWorkingMeshInBackground(*state.surface, config.levelset, config.layout.spacing);
+    }
     completed.push_back(entry.name);
     // fields.vtk once its last input is there (pipeline/surface_fields.h), while the stages go on.
     const Stage last_input =
         static_cast<int>(options.until) < static_cast<int>(Stage::kLevelset) ? options.until : Stage::kLevelset;
     if (entry.stage == last_input && config.output.fields && !state.guidance.direction.empty())
       WriteSurfaceFieldsVtkInBackground(state, out.get());
+    if (entry.stage == Stage::kLevelset && hold_writes) out->ReleaseWrites();
     LOG(INFO) << entry.name << ": done in " << metrics["seconds"].get<double>() << " s";
     if (options.progress) options.progress(entry.name, "done", metrics["seconds"].get<double>());
   }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -43,7 +44,12 @@ struct AnalysisTables {
 // Everything the stages hand on to each other.
 struct PipelineState {
   Config config;
-  std::unique_ptr<SurfaceModel> surface;  // stage surface
+  // stage surface; shared with the figures of the reference drawn on the background writer
+  // (guidance, levelset), which read it while the later stages run (SurfaceModel::FreezeFields).
+  std::shared_ptr<SurfaceModel> surface;
+  // levelset's working mesh, made ahead on a thread of its own from the surface stage on (when
+  // the run goes as far as levelset); declared after surface: joined before it goes.
+  std::shared_future<WorkingMesh> working_mesh;
   VertexConditions supports;              // stage surface: per boundary vertex
   // stage membrane: vertex field "v_z" on *surface
   GuidanceField guidance;                 // stage guidance

@@ -141,10 +141,16 @@ Status RunGuidanceStage(PipelineState* state, OutputFiles* out, nlohmann::json* 
                             : strain ? "Guidance: principal strain directions (integral curves)"
                                      : "Guidance: " + options.source + " directions (integral curves)";
   const std::string label = strain ? "|ε_max|" : options.source == "curvature" ? "|κ1 − κ2| [1/m]" : "|d|";
-  FigureOptions figure;
-  figure.guidance_singularities = &g.singularities;
-  return WriteGuidanceFigure(surface, g.direction, g.magnitude, label, g.weight, title,
-                             out->Path("figures/guidance.svg"), figure);
+  // On the background writer (~0.4 s at a million triangles), from copies of the field; the
+  // reference is shared, read-only from here on (SurfaceModel::FreezeFields).
+  out->WriteInBackground([reference = std::shared_ptr<const SurfaceModel>(state->surface), direction = g.direction,
+                          magnitude = g.magnitude, weight = g.weight, singularities = g.singularities, label, title,
+                          path = out->Path("figures/guidance.svg")] {
+    FigureOptions figure;
+    figure.guidance_singularities = &singularities;
+    return WriteGuidanceFigure(*reference, direction, magnitude, label, weight, title, path, figure);
+  });
+  return Status::Ok();
 }
 
 }  // namespace pqlayout

@@ -81,7 +81,10 @@ Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
     LOG(INFO) << "surface: " << source << " is georeferenced: solved in a local frame whose origin is ("
               << state->origin.x() << ", " << state->origin.y() << ", " << state->origin.z()
               << ") in the file's coordinates (stages.surface.origin); the meshes and tables are written in the file's";
-  state->surface = std::make_unique<SurfaceModel>(std::move(mesh));
+  state->surface = std::make_shared<SurfaceModel>(std::move(mesh));
+  // The fields the later stages fill (membrane v_z, levelset φ and ψ), created now: the
+  // reference's figures are drawn on the background writer while the next stages run.
+  state->surface->FreezeFields({"v_z", "phi", "psi"});
   const SurfaceModel& surface = *state->surface;
   PQ_RETURN_IF_ERROR(ResolveBoundaryConditions(InLocalFrame(config.boundary, state->origin), surface,
                                                config.extract.corner_angle, &state->supports,

@@ -10,7 +10,9 @@
 
 namespace pqlayout {
 
-// Copies what the file holds out of `state` and queues its writing on out's background writer.
+// Copies the field values the file holds out of `state` and queues its writing on out's
+// background writer, which reads the reference's points and triangles itself (the reference is
+// shared and read-only from the surface stage on: SurfaceModel::FreezeFields).
 void WriteSurfaceFieldsVtkInBackground(const PipelineState& state, OutputFiles* out);
 
 }  // namespace pqlayout

@@ -18,6 +18,7 @@
 // (a barrier under the worst face) from the joint solve's end instead, if they end better.
 #pragma once
 
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -119,8 +120,28 @@ struct LevelSetSolution {
   nlohmann::json tip_cone;
 };
 
+// The mesh the level sets are solved on: the reference itself (mesh null) or a remeshed copy
+// whose edges are `edge` long, for a reference much finer than the layout needs or one of
+// slivers; `kind` is report.json's working_mesh ("reference", "plan", "CGAL remeshing (…)").
+// `ahead`: made on a thread of its own before the level-set stage (its log lines say so).
+struct WorkingMesh {
+  std::shared_ptr<const SurfaceModel> mesh;
+  double edge = 0.0;
+  std::string kind = "reference";
+  Status status;  // CGAL's remeshing failed
+};
+WorkingMesh MakeWorkingMesh(const SurfaceModel& surface, const LevelsetOptions& options, double spacing,
+                            bool ahead = false);
+// The same on a thread of its own, started by the pipeline after the surface stage so that it
+// overlaps the membrane and guidance (0.3 s at a million triangles from the plan, ~25 s through
+// CGAL's remeshing); the same mesh as made in place. surface must outlive the future.
+std::shared_future<WorkingMesh> MakeWorkingMeshInBackground(const SurfaceModel& surface,
+                                                            const LevelsetOptions& options, double spacing);
+
+// `working`: the mesh made ahead (MakeWorkingMeshInBackground) for these options and spacing;
+// null: made here.
 Status SolveLevelSets(const SurfaceModel& surface, const GuidanceField& guidance, const LevelsetOptions& options,
-                      double spacing, LevelSetSolution* solution);
+                      double spacing, LevelSetSolution* solution, const WorkingMesh* working = nullptr);
 
 // The metrics of any pair (φ, ψ), e.g. for tests or another layout.
 LevelSetMetrics MeasureLevelSets(const SurfaceModel& surface, const GuidanceField& guidance,

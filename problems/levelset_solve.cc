@@ -51,62 +51,6 @@ GuidanceField TransferGuidance(const SurfaceModel& reference, const GuidanceFiel
   return out;
 }
 
-constexpr double kWorkingCornerAngle = 30.0;  // corners the working mesh keeps (extract.corner_angle's default)
-constexpr double kReuseReference = 0.7;       // solve on the reference if its mean edge ≥ this × working edge
-constexpr double kDefaultWorkingEdge = 0.4;   // × h: CGAL lands near 12k triangles on the Great Court at h = 3 m
-// × h, levelset.draft: a quarter of the triangles (2.9k on the Great Court), level sets ~5× faster;
-// over seven Great Court meshes the shell after stiffen is a median 9 % (strain) and 5 %
-// (curvature) softer and one of eleven targets is missed (the shortest edge at the hole):
-// README "Draft runs". Never coarser than 1/kDraftLoopEdges of the shortest boundary loop (nor
-// finer than the default): at 0.8 h the two_holes roof's openings (10 and 12.6 m round, h =
-// 1.5 m) got 8–10 working edges each and its planarisation failed (δ 0.3–1.0).
-constexpr double kDraftWorkingEdge = 0.8;
-constexpr double kDraftLoopEdges = 16.0;
-
-double WorkingEdge(const SurfaceModel& s, const LevelsetOptions& options, double h) {
-  if (options.working_edge > 0.0) return options.working_edge;
-  if (!options.draft) return kDefaultWorkingEdge * h;
-  double edge = kDraftWorkingEdge * h;
-  for (const auto& loop : s.boundary_loops()) edge = std::min(edge, loop.length / kDraftLoopEdges);
-  edge = std::max(edge, kDefaultWorkingEdge * h);
-  LOG(INFO) << "levelset: draft: φ, ψ on a working mesh of edge " << edge << " m (" << kDraftWorkingEdge
-            << " h, at most 1/" << kDraftLoopEdges << " of the shortest boundary loop; a quick look, not the final "
-            << "layout: README \"Draft runs\")";
-  return edge;
-}
-constexpr int kRemeshIterations = 3;
-// A reference whose triangles are mostly slivers (a NURBS render mesh: strips of 0.2 × 2.7 m
-// on a 20 m dome) is remeshed even where it is not finer than the working mesh: solved on
-// directly, its P1 gradients aligned to 9.3° where an isotropic mesh of the same dome gives
-// 6.0°. Generated references never qualify (every angle ≥ 20°: RoofGenerator tests).
-constexpr double kSliverAngleDeg = 15.0;
-constexpr double kSliverFraction = 0.1;
-
-// The share of the triangles with an angle below kSliverAngleDeg.
-double SliverFraction(const SurfaceModel& s) {
-  if (s.num_faces() == 0) return 0.0;
-  const double limit = std::cos(kSliverAngleDeg * M_PI / 180.0);
-  int slivers = 0;
-  for (int f = 0; f < s.num_faces(); ++f) {
-    const auto v = s.face_vertices(f);
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d a = (s.position(v[(k + 1) % 3]) - s.position(v[k])).normalized();
-      const Eigen::Vector3d b = (s.position(v[(k + 2) % 3]) - s.position(v[k])).normalized();
-      if (a.dot(b) > limit) {
-        ++slivers;
-        break;
-      }
-    }
-  }
-  return static_cast<double>(slivers) / s.num_faces();
-}
-// References with at least this many triangles get their working mesh from the plan when they
-// are height fields (plan_remesh.h): CGAL's remeshing of the whole reference costs ~7 µs per
-// triangle (1.5 s here, 22–28 s at 1M). Below it CGAL's remeshing stays: on the corpus roofs
-// (8k triangles) the plan path gave 36 misses instead of 33 (interior non-quads on the saddle
-// 0 → 8, the hypar 0 → 2, the square dome under strain 3 → 9; quads of the square dome under
-// curvature 1.0 → 0.83), a cause not found yet (benchmarks/RESULTS.md, 2026-12-03).
-constexpr int kPlanFromTriangles = 200000;
 constexpr double kCancelDistance = 2.0;  // × h: two ±½ singularities closer than this get no seam
 constexpr double kMinSeamWeight = 1.0;   // × h: a seam whose path has less weighted length is not cut
 constexpr double kCancelInZone = 3.0;    // × h: two of one sign in one weak zone closer than this get no seam
@@ -388,42 +332,15 @@ Status SolveOnWorking(const SurfaceModel& s, std::shared_ptr<const SurfaceModel>
 }  // namespace
 
 Status SolveLevelSets(const SurfaceModel& s, const GuidanceField& g, const LevelsetOptions& options, double h,
-                      LevelSetSolution* solution) {
-  const double working_edge = WorkingEdge(s, options, h);
-  const double reference_edge = MeanEdgeLength(s.mesh());
-  std::shared_ptr<const SurfaceModel> working;
+                      LevelSetSolution* solution, const WorkingMesh* made) {
+  const WorkingMesh own = made != nullptr ? WorkingMesh() : MakeWorkingMesh(s, options, h);
+  const WorkingMesh& w = made != nullptr ? *made : own;
+  PQ_RETURN_IF_ERROR(w.status);
+  const double working_edge = w.edge;
+  const std::shared_ptr<const SurfaceModel>& working = w.mesh;
+  const std::string& working_kind = w.kind;
   GuidanceField working_guidance;
-  std::string working_kind = "reference";
-  const bool finer = reference_edge < kReuseReference * working_edge;
-  const double slivers = finer ? 0.0 : SliverFraction(s);
-  if (finer || slivers > kSliverFraction) {
-    std::ostringstream why;
-    if (finer)
-      why << "reference mean edge " << reference_edge << " m < " << kReuseReference << " × working edge " << working_edge << " m";
-    else
-      why << 100.0 * slivers << " % of the reference's triangles have an angle below " << kSliverAngleDeg << "°";
-    // A reference much finer than the layout needs, or one of slivers (a NURBS render mesh of
-    // strips, on which the gradients are poor): solve on a remeshed copy whose edges are
-    // working_edge long (the level lines are h apart; 0.4 h resolves them), then interpolate
-    // φ and ψ to the reference's vertices. Stage time then follows h, not the reference size.
-    // A large height-field reference is meshed anew in the plan (plan_remesh.h, < 0.5 s at 1M
-    // triangles); any other goes through CGAL's isotropic remeshing (~25 s at 1M), with a
-    // progress line first.
-    TriMesh working_mesh;
-    std::string why_not = "fewer than " + std::to_string(kPlanFromTriangles) + " triangles";
-    if (s.num_faces() >= kPlanFromTriangles &&
-        RemeshOverPlan(s, working_edge, kWorkingCornerAngle, &working_mesh, &why_not)) {
-      LOG(INFO) << "levelset: " << why.str() << ": its plan meshed anew as a working mesh";
-      working_kind = "plan";
-    } else {
-      LOG(INFO) << "levelset: " << why.str() << ": remeshing its " << s.num_faces()
-                << " triangles to a working mesh (CGAL isotropic remeshing, " << kRemeshIterations
-                << " rounds; not from the plan: " << why_not << ") ...";
-      PQ_RETURN_IF_ERROR(RemeshIsotropic(s, working_edge, kWorkingCornerAngle, kRemeshIterations, &working_mesh)
-                             .WithContext("levelset working mesh"));
-      working_kind = "CGAL remeshing (not from the plan: " + why_not + ")";
-    }
-    working = std::make_shared<const SurfaceModel>(std::move(working_mesh));
+  if (working) {
     LOG(INFO) << "levelset: solving on the remeshed copy, " << working->num_faces() << " triangles";
     working_guidance = TransferGuidance(s, g, *working);
   }

@@ -79,6 +79,48 @@ TEST(BackgroundWriter, TheDestructorWaitsForTheQueue) {
   EXPECT_EQ(count->load(), 3);
 }
 
+// Held tasks do not start until Release; they then run in order; Wait releases too, and a
+// task added after Release starts at once.
+TEST(BackgroundWriter, HeldTasksStartOnlyOnceReleased) {
+  BackgroundWriter writer;
+  std::atomic<int> ran{0};
+  writer.Hold();
+  for (int k = 0; k < 3; ++k)
+    writer.Add([k, &ran] {
+      EXPECT_EQ(ran.load(), k);
+      ++ran;
+      return Status::Ok();
+    });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(ran.load(), 0);
+  writer.Release();
+  for (int i = 0; i < 1000 && ran.load() < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  EXPECT_EQ(ran.load(), 3);
+  writer.Hold();
+  writer.Add([&ran] {
+    ++ran;
+    return Status::Ok();
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(ran.load(), 3);
+  ASSERT_TRUE(writer.Wait().ok());  // releases
+  EXPECT_EQ(ran.load(), 4);
+}
+
+// A writer destroyed while holding still runs what it holds (a task is never half done).
+TEST(BackgroundWriter, TheDestructorRunsHeldTasks) {
+  std::atomic<int> ran{0};
+  {
+    BackgroundWriter writer;
+    writer.Hold();
+    writer.Add([&ran] {
+      ++ran;
+      return Status::Ok();
+    });
+  }
+  EXPECT_EQ(ran.load(), 1);
+}
+
 TEST(BackgroundWriter, WaitWithNothingAddedReturnsAtOnce) {
   BackgroundWriter writer;
   EXPECT_TRUE(writer.Wait().ok());

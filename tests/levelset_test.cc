@@ -185,6 +185,37 @@ TEST(LevelSets, LargeHeightFieldIsSolvedOnAWorkingMeshFromItsPlan) {
   EXPECT_LE(solution.metrics.spacing_cv_phi, 1e-3);
 }
 
+// The pipeline makes the working mesh ahead, on a thread of its own, while the membrane and
+// guidance run: it must be the mesh made in place, to the bit, and give the same level sets.
+TEST(LevelSets, AWorkingMeshMadeAheadIsTheOneMadeInPlace) {
+  const SurfaceModel s(Plane(12.0, 0.035));
+  const LevelsetOptions options;
+  const std::shared_future<WorkingMesh> ahead = MakeWorkingMeshInBackground(s, options, 1.5);
+  const WorkingMesh here = MakeWorkingMesh(s, options, 1.5);
+  const WorkingMesh& made = ahead.get();
+  ASSERT_TRUE(made.status.ok() && here.status.ok());
+  EXPECT_EQ(made.kind, "plan");
+  EXPECT_EQ(made.kind, here.kind);
+  EXPECT_EQ(made.edge, 0.4 * 1.5);
+  ASSERT_TRUE(made.mesh && here.mesh);
+  ASSERT_EQ(made.mesh->num_vertices(), here.mesh->num_vertices());
+  ASSERT_EQ(made.mesh->num_faces(), here.mesh->num_faces());
+  for (int v = 0; v < made.mesh->num_vertices(); ++v) ASSERT_EQ(made.mesh->position(v), here.mesh->position(v)) << v;
+  for (int f = 0; f < made.mesh->num_faces(); ++f) ASSERT_EQ(made.mesh->face_vertices(f), here.mesh->face_vertices(f));
+  const GuidanceField g = UniformGuidance(s, [](const Eigen::Vector3d&) { return Eigen::Vector3d::UnitX(); });
+  LevelSetSolution with, without;
+  ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, &with, &made).ok());
+  ASSERT_TRUE(SolveLevelSets(s, g, options, 1.5, &without).ok());
+  EXPECT_EQ(with.working_mesh, "plan");
+  EXPECT_EQ(with.phi, without.phi);
+  EXPECT_EQ(with.psi, without.psi);
+  // A reference no finer than the working edge needs none.
+  const SurfaceModel coarse(Plane(12.0, 0.8));
+  const WorkingMesh none = MakeWorkingMeshInBackground(coarse, options, 1.5).get();
+  EXPECT_FALSE(none.mesh);
+  EXPECT_EQ(none.kind, "reference");
+}
+
 // The same large square stood up at 85° is no height field (plan_remesh.h declines faces
 // steeper than 80°): the working mesh comes from CGAL's remeshing of the reference.
 TEST(LevelSets, LargeReferenceThatIsNoHeightFieldIsRemeshedByCgal) {

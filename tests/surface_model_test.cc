@@ -23,6 +23,21 @@ TriMesh GridWithHole() {
   return testing::ToMesh(soup);
 }
 
+// After FreezeFields the fields named there can be filled and read, and a new one is refused:
+// the figures read the reference on another thread while later stages fill its fields, and
+// creating a property would change the mesh's property list under them.
+TEST(SurfaceModel, FrozenFieldsAreFilledAndNoNewOneIsCreated) {
+  SurfaceModel s(testing::ToMesh(testing::FlatGridSoup(2)));
+  s.FreezeFields({"v_z", "phi"});
+  auto v_z = s.VertexField<double>("v_z");
+  v_z[VertexHandle(3)] = 2.5;
+  EXPECT_EQ(s.VertexFieldValues("v_z")[3], 2.5);
+  EXPECT_EQ(s.VertexFieldValues("phi")[3], 0.0);
+  EXPECT_DEATH(s.VertexField<double>("psi"), "field 'psi' created after SurfaceModel::FreezeFields");
+  EXPECT_DEATH(s.FaceField<int>("colour"), "field 'colour' created after SurfaceModel::FreezeFields");
+  EXPECT_DEATH(s.VertexField<int>("v_z"), "field 'v_z' created after");  // the same name, another type
+}
+
 TEST(SurfaceModel, AreasNormalsAndLumpedVertexAreas) {
   // z = x: every triangle is a unit-square half tilted by 45°, area ½·√2.
   const SurfaceModel s(testing::ToMesh(testing::GridSoup(3, [](double x, double) { return x; })));
