@@ -128,9 +128,12 @@ Status RunSurfaceStage(PipelineState* state, OutputFiles* out, nlohmann::json* m
             << (frame.parts > 1 ? ", " + std::to_string(frame.parts) + " separate parts" : std::string())
             << ", min angle "
             << quality.min_angle_deg << "°";
-  // Formatted and written on the writer's thread while the stages go on (base/background_writer.h).
-  out->WriteInBackground([mesh = std::make_shared<const TriangleArrays>(CopyTriangles(surface.mesh())),
-                          path = out->Path("surface.obj"), origin = state->origin] { return WriteObj(*mesh, path, origin); });
+  // Gathered, formatted and written on the writer's thread while the stages go on
+  // (base/background_writer.h), from the shared reference (read-only from here on).
+  out->WriteInBackground([reference = std::shared_ptr<const SurfaceModel>(state->surface),
+                          path = out->Path("surface.obj"), origin = state->origin] {
+    return WriteObj(CopyTriangles(reference->mesh()), path, origin);
+  });
   return Status::Ok();
 }
 
