@@ -33,23 +33,24 @@ auto Closest(const AabbTree& tree, const std::vector<Item>& items, const Kernel:
 }
 }  // namespace
 
-// The triangles' boxes in a uniform grid, to settle a hinted query without the tree when
-// nothing can displace the hint. CGAL's hinted search starts from the hint's (point, triangle)
-// and replaces it only by a triangle whose projection is not farther and is another point
-// (AABB_traits::Closest_point, Projection_traits::intersection). So if no triangle within the
-// hint's distance projects to a point not farther and different, the answer is the hint, and
-// that is what HintStands checks, over the triangles whose boxes meet the cube round the query
-// of half-width that distance (any triangle that close has a point in that cube, and so is
-// filed in a cell the cube covers). Else, or if the cube covers many cells, the tree search
-// runs as before: the same answer either way, to the bit. Why: a vertex sliding on a
-// million-triangle reference asks ~170k hinted queries in planarisation, each tree search
-// ~20 levels of cache misses (~4 µs); most end at the hint.
+// The triangles' boxes in a uniform grid, to settle a hinted query without the tree. CGAL's
+// hinted search starts from the hint's (point, triangle) and replaces it by any triangle whose
+// projection is not farther and is another point (AABB_traits::Closest_point,
+// Projection_traits::intersection). Settle looks at the triangles whose boxes meet the cube
+// round the query of the hint's distance (any triangle that close has a point in that cube, and
+// so is filed in a cell the cube covers), with CGAL's own constructions and comparisons: if none
+// can displace the hint, the answer is the hint; if one is closer than the hint and every other
+// by a margin far above rounding, the tree search ends there (it reaches that triangle, since its
+// boxes are closer than any bound held before, and nothing displaces it after); else (ties, near
+// ties, or a cube over many cells) the tree search runs as before. The same answer either way,
+// to the bit. Why: a vertex sliding on a million-triangle reference asks ~170k hinted queries in
+// planarisation, each tree search ~20 levels of cache misses (~4 µs).
 class TriangleGrid {
  public:
   void Build(const std::vector<Triangle>& triangles);
-  // False: a triangle other than `hint` may displace it (or the cube is too large to look).
-  bool HintStands(const std::vector<Triangle>& triangles, const Kernel::Point_3& q, const Kernel::Point_3& at,
-                  int hint) const;
+  // Given the hint's (point `at`, triangle `hint`): true with the tree search's answer in them,
+  // or false if it cannot be settled here (a near tie, or the cube too large to look).
+  bool Settle(const std::vector<Triangle>& triangles, const Kernel::Point_3& q, Kernel::Point_3* at, int* hint) const;
 
  private:
   static constexpr int kMaxCells = 27;  // a larger cube: the tree search
@@ -111,10 +112,12 @@ void TriangleGrid::Build(const std::vector<Triangle>& triangles) {
   for (size_t t = 0; t < n; ++t) each_cell(t, [&](size_t c) { items_[fill[c]++] = static_cast<int>(t); });
 }
 
-bool TriangleGrid::HintStands(const std::vector<Triangle>& triangles, const Kernel::Point_3& q,
-                              const Kernel::Point_3& at, int hint) const {
+bool TriangleGrid::Settle(const std::vector<Triangle>& triangles, const Kernel::Point_3& q, Kernel::Point_3* at,
+                          int* hint) const {
   if (items_.empty()) return false;
-  const double r = std::sqrt(CGAL::squared_distance(q, at)) * (1.0 + 1e-6) + slack_;
+  const Kernel kernel;
+  const double hint_d2 = CGAL::squared_distance(q, *at);
+  const double r = std::sqrt(hint_d2) * (1.0 + 1e-6) + slack_;
   const Eigen::Vector3d p(q.x(), q.y(), q.z());
   std::array<int, 3> from{}, to{};
   int count = 1;
@@ -123,23 +126,40 @@ bool TriangleGrid::HintStands(const std::vector<Triangle>& triangles, const Kern
     count *= to[a] - from[a] + 1;
   }
   if (count > kMaxCells) return false;
-  const Kernel kernel;
+  bool displaced = false;  // a triangle whose projection is not farther and another point
+  int best = -1;
+  Kernel::Point_3 best_point;
+  double best_d2 = hint_d2, second_d2 = INFINITY;  // the closest other than the hint; the next
   for (int k = from[2]; k <= to[2]; ++k)
     for (int j = from[1]; j <= to[1]; ++j)
       for (int i = from[0]; i <= to[0]; ++i) {
         const size_t c = (static_cast<size_t>(k) * n_[1] + j) * n_[0] + i;
         for (int e = offsets_[c]; e < offsets_[c + 1]; ++e) {
           const int t = items_[e];
-          if (t == hint) continue;
+          if (t == *hint || t == best) continue;
           const auto& b = boxes_[t];
           if (b[0] > p.x() + r || b[3] < p.x() - r || b[1] > p.y() + r || b[4] < p.y() - r || b[2] > p.z() + r ||
               b[5] < p.z() - r)
             continue;
           const Kernel::Point_3 other = kernel.construct_projected_point_3_object()(triangles[t], q);
-          if (kernel.compare_distance_3_object()(q, other, at) != CGAL::LARGER && !kernel.equal_3_object()(other, at))
-            return false;
+          if (kernel.compare_distance_3_object()(q, other, *at) == CGAL::LARGER || kernel.equal_3_object()(other, *at))
+            continue;
+          displaced = true;
+          const double d2 = CGAL::squared_distance(q, other);
+          if (best < 0 || d2 < best_d2) {
+            second_d2 = std::min(second_d2, best < 0 ? hint_d2 : best_d2);
+            best = t, best_point = other, best_d2 = d2;
+          } else {
+            second_d2 = std::min(second_d2, d2);
+          }
         }
       }
+  if (!displaced) return true;
+  // One triangle closer than every other by a margin far above rounding: the tree search from
+  // the hint visits it (its boxes are closer than any bound it holds before) and nothing can
+  // displace it after. Ties, or near ties, go to the tree.
+  if (!(best_d2 < (1.0 - 1e-9) * second_d2)) return false;
+  *at = best_point, *hint = best;
   return true;
 }
 
@@ -182,9 +202,11 @@ SurfacePoint ClosestPointQuery::OnSurface(const Eigen::Vector3d& p, int hint) co
   const Kernel::Point_3 q = ToCgal(p);
   Kernel::Point_3 at;
   SurfacePoint out;
+  int settled = hint;
   if (hint >= 0 && hint < static_cast<int>(tree_->triangles.size()) &&
-      tree_->grid.HintStands(tree_->triangles, q, at = Kernel().construct_projected_point_3_object()(tree_->triangles[hint], q), hint)) {
-    out.element = hint;  // what the tree search from this hint returns (TriangleGrid)
+      tree_->grid.Settle(tree_->triangles, q, &(at = Kernel().construct_projected_point_3_object()(tree_->triangles[hint], q)),
+                         &settled)) {
+    out.element = settled;  // what the tree search from this hint returns (TriangleGrid)
   } else {
     const auto hit = Closest(tree_->tree, tree_->triangles, q, hint);
     at = hit.first;

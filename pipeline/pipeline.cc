@@ -178,11 +178,13 @@ Status RunPipeline(const Config& config, const RunOptions& options, nlohmann::js
       PQ_RETURN_IF_ERROR(CheckSupportsHoldTheFrameInPlan(state.supports));
     // The reference's closest-point index, which levelset (a large reference's working mesh),
     // extract, planarize and stiffen query, built on the second core during membrane and guidance.
-    // So is levelset's working mesh (problems/levelset.h), on a thread of its own.
-    if (entry.stage == Stage::kSurface && static_cast<int>(options.until) >= static_cast<int>(Stage::kLevelset)) {
-      state.surface->IndexClosestPointsInBackground();
+    const bool to_levelset = static_cast<int>(options.until) >= static_cast<int>(Stage::kLevelset);
+    if (entry.stage == Stage::kSurface && to_levelset) state.surface->IndexClosestPointsInBackground();
+    // levelset's working mesh (problems/levelset.h) on a thread of its own during guidance: started
+    // with the index, it slowed the membrane's two-threaded factor more than it saved (962k, three
+    // interleaved pairs: 16.87 / 15.67 / 15.42 s against 15.91 / 15.32 / 15.22 s from here).
+    if (entry.stage == Stage::kMembrane && to_levelset)
       state.working_mesh = MakeWorkingMeshInBackground(*state.surface, config.levelset, config.layout.spacing);
-    }
     completed.push_back(entry.name);
     // fields.vtk once its last input is there (pipeline/surface_fields.h), while the stages go on.
     const Stage last_input =

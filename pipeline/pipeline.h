@@ -47,7 +47,7 @@ struct PipelineState {
   // stage surface; shared with the figures of the reference drawn on the background writer
   // (guidance, levelset), which read it while the later stages run (SurfaceModel::FreezeFields).
   std::shared_ptr<SurfaceModel> surface;
-  // levelset's working mesh, made ahead on a thread of its own from the surface stage on (when
+  // levelset's working mesh, made ahead on a thread of its own from the membrane stage on (when
   // the run goes as far as levelset); declared after surface: joined before it goes.
   std::shared_future<WorkingMesh> working_mesh;
   VertexConditions supports;              // stage surface: per boundary vertex

@@ -132,9 +132,9 @@ struct WorkingMesh {
 };
 WorkingMesh MakeWorkingMesh(const SurfaceModel& surface, const LevelsetOptions& options, double spacing,
                             bool ahead = false);
-// The same on a thread of its own, started by the pipeline after the surface stage so that it
-// overlaps the membrane and guidance (0.3 s at a million triangles from the plan, ~25 s through
-// CGAL's remeshing); the same mesh as made in place. surface must outlive the future.
+// The same on a thread of its own, started by the pipeline after the membrane stage so that it
+// overlaps the guidance (0.3 s at a million triangles from the plan, ~25 s through CGAL's
+// remeshing); the same mesh as made in place. surface must outlive the future.
 std::shared_future<WorkingMesh> MakeWorkingMeshInBackground(const SurfaceModel& surface,
                                                             const LevelsetOptions& options, double spacing);
 

@@ -81,7 +81,7 @@ constexpr int kPlanFromTriangles = 200000;
 // triangles); any other goes through CGAL's isotropic remeshing (~25 s at 1M), with a
 // progress line first.
 WorkingMesh MakeWorkingMesh(const SurfaceModel& s, const LevelsetOptions& options, double h, bool ahead) {
-  const std::string prefix = ahead ? "levelset (made ahead, beside membrane and guidance): " : "levelset: ";
+  const std::string prefix = ahead ? "levelset (made ahead, beside the guidance): " : "levelset: ";
   WorkingMesh w;
   w.edge = WorkingEdge(s, options, h, prefix);
   const double reference_edge = MeanEdgeLength(s.mesh());
