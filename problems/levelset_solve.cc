@@ -1,5 +1,6 @@
 // The level-set solves' drivers (paper §3.1): which seams to cut (SeamTips, SolveWithSeams) and
-// the working mesh (SolveLevelSets); the problem on one mesh is levelset_problem.cc.
+// the solve on the working mesh (SolveLevelSets; the mesh itself is levelset_working.cc); the
+// problem on one mesh is levelset_problem.cc.
 #include "problems/levelset_internal.h"
 
 #include <glog/logging.h>
@@ -7,14 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <sstream>
 #include <thread>
 
 #include "base/parallel_ranges.h"
 #include "geometry/closest_point.h"
 #include "geometry/line_field_singularities.h"
-#include "geometry/plan_remesh.h"
-#include "geometry/remesh.h"
 
 namespace pqlayout {
 

@@ -3,6 +3,7 @@
 // of its own (MakeWorkingMeshInBackground).
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <cmath>
 #include <future>
 #include <sstream>
