@@ -54,8 +54,8 @@ class TriangleGrid {
 
  private:
   static constexpr int kMaxCells = 27;  // a larger cube: the tree search
-  int Cell(double x, int axis) const {
-    return std::clamp(static_cast<int>(std::floor((x - lo_[axis]) / cell_)), 0, n_[axis] - 1);
+  int Cell(double x, int axis) const {  // x finite; clamped before the cast (a far x overflows no int)
+    return static_cast<int>(std::clamp(std::floor((x - lo_[axis]) / cell_), 0.0, n_[axis] - 1.0));
   }
   Eigen::Vector3d lo_ = Eigen::Vector3d::Zero();
   double cell_ = 1.0, slack_ = 0.0;
@@ -119,6 +119,7 @@ bool TriangleGrid::Settle(const std::vector<Triangle>& triangles, const Kernel::
   const double hint_d2 = CGAL::squared_distance(q, *at);
   const double r = std::sqrt(hint_d2) * (1.0 + 1e-6) + slack_;
   const Eigen::Vector3d p(q.x(), q.y(), q.z());
+  if (!(r <= 1.5 * cell_) || !p.allFinite()) return false;  // a cube over more than 27 cells; NaN
   std::array<int, 3> from{}, to{};
   int count = 1;
   for (int a = 0; a < 3; ++a) {

@@ -74,6 +74,9 @@ TEST(ClosestPoint, HintedAnswersAreCgalsToTheBit) {
     const auto ids = s.face_vertices(f);
     check(0.5 * (s.position(ids[0]) + s.position(ids[1])), f);
   }
+  check(Eigen::Vector3d(1e12, -3e15, 7.0), 17);  // far off the grid: the tree's answer, no overflow
+  check(Eigen::Vector3d(20.0, 20.0, 1e3), 17);
+  EXPECT_FALSE(std::isfinite(query.OnSurface(Eigen::Vector3d(NAN, 1.0, 1.0), 17).distance));  // no crash
   std::cout << checked << " queries, " << settled_near << " answered by their hint\n";
   EXPECT_GT(settled_near, checked / 4);  // the grid's path is taken, not only the tree's
 }
