@@ -97,12 +97,13 @@ KeyTable::KeyTable(Config* c) {
          "folds over after its rounds is solved again with the spacing term following the cone within this of each "
          "branch point, h|∇u| = (d / (this × h))^½ at distance d instead of 1 (the cells there grow instead of "
          "shearing), and the better end kept (0: no second solve)");
-  Choice("levelset.alongside", &c->levelset.alongside, {"auto", "true", "false"},
+  Choice("levelset.alongside", &c->levelset.alongside, {"auto", "true", "false", "1"},
          "true: solve the second layouts that may be needed (the cone's retry where the layout has branch points, "
          "the layout with poles where the guidance has crowns) on threads of their own beside the first from the "
          "start, each cancelled as soon as it is known not to be needed (the same outputs; on 2 cores the level sets "
          "~0.7× as long where they are needed, ~1.1× where they are not); false: one thread, each only once needed; "
-         "auto: as many at once as the hardware threads less one (one on 2 cores)");
+         "auto: as many at once as the hardware threads less one (one on 2 cores); 1: one at a time (auto's schedule on "
+         "2 cores, on any machine)");
   Bool("levelset.separate_solves", &c->levelset.separate_solves,
        "solve φ alone, then ψ with φ held, before the solve of both together (the paper's order); false: the "
        "joint solve starts from the initial guess (as stiff or stiffer, the level sets ~3× faster: "

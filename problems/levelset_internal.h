@@ -114,6 +114,8 @@ struct TermProblem {
  private:
   std::unordered_map<double, ceres::LossFunction*> weights_;  // owned by problem
 };
+// A solve's log name: "(alongside) phi" on a second layout's thread (AlongsideSolve).
+std::string LogName(const std::string& name);
 // One Ceres solve of at most max_iterations, logged under name; stop_on_stall: also end once
 // past iteration 100 the cost fell by less than 0.5 % over the last 24 (levelset_terms.cc, StallStop).
 Status Solve(const std::string& name, int max_iterations, TermProblem* terms, nlohmann::json* summary,
@@ -139,9 +141,10 @@ LevelSetMetrics Measure(const SurfaceModel& s, const LevelSetGeometry& geo, cons
 using Finish = std::function<Status()>;
 
 // levelset.alongside: how many second layouts that may be needed — the poles' (SolveLevelSets)
-// and the cone's retry (SolveOnMesh) — may be solved at once on threads of their own beside the
-// first from the start, in the whole process: "false" none, "true" no limit, "auto" the hardware
-// threads less one (one on a 2-core machine, so that every solve has a core). Each solve is
+// and the cone's retry with its rounds (SolveOnMesh) — and the rounds' floor way (Rounds) may be
+// solved at once on threads of their own beside the first, in the whole process: "false" none,
+// "true" no limit, "auto" the hardware threads less one (one on a 2-core machine, so that every
+// solve has a core), "1" one. Each solve is
 // single-threaded on its own data, so the outputs are the same either way. One that turns out
 // not to be needed is cancelled as soon as that is known; what it then cost is the first
 // layout's time while both ran (on the 2-core machine the example's level sets 1.12× as long,

@@ -51,6 +51,13 @@ LevelSetProblem::LevelSetProblem(const SurfaceModel& s, const LevelSetGeometry& 
   spacing_target_ = ConeSpacingTargets(geo, tips, options.tip_cone_radius, h);
 }
 
+LevelSetProblem::LevelSetProblem(const LevelSetProblem& o, LevelSetSolution* into)
+    : s_(o.s_), geo_(o.geo_), edges_(o.edges_), g_(o.g_), options_(o.options_), w_(o.w_), h_(o.h_),
+      min_angle_(o.min_angle_), seams_(o.seams_), seam_terms_(o.seam_terms_), solution_(into), phi_(into->phi),
+      psi_(into->psi), phi_chart_{&phi_, o.phi_chart_.map}, psi_chart_{&psi_, o.psi_chart_.map},
+      fixed_tips_(o.fixed_tips_), spacing_target_(o.spacing_target_), boost_(o.boost_), hinge_angle_(o.hinge_angle_),
+      barrier_floor_(o.barrier_floor_), prefix_(o.prefix_), cg_steps_(o.cg_steps_) {}
+
 void LevelSetProblem::Project() {
   if (seams_ == nullptr) return;
   ProjectTransitions(*seams_, seams_->phi_offset, &phi_);
@@ -175,6 +182,7 @@ struct ConeSolve {
   LevelSetSolution solution;
   std::unique_ptr<LevelSetProblem> problem;
   Status status;
+  bool rounds_done = false;  // its rounds run too (alongside: they are the same whenever run)
 };
 
 // What SolveOnMesh keeps for its `finish` (on the heap: with `finish` it outlives the call).
@@ -213,8 +221,8 @@ bool MayRetryWithCone(const LevelsetOptions& options, int tips) { return options
 // from where the first layout ended: that retry (the joint solve and its rounds only) was as
 // stiff and 1.5× cheaper on the corpus, but the 962k-triangle Great Court's curvature layout
 // then ended at 26.8° instead of 31.0° (RESULTS, "The cone's second solve from where the
-// first ended: tried, not kept"). The cone's solve to its joint usually ran alongside the first
-// (SolveOnMesh); its rounds run here, once it is known to be needed.
+// first ended: tried, not kept"). The cone's solve usually ran alongside the first, its rounds
+// too (StartConeAlongside); else it is solved here, once it is known to be needed.
 Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSolution* solution) {
   const LevelSetMetrics without = solution->metrics;
   const double min_angle = state.plain.min_angle;
@@ -223,8 +231,10 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
     state.alongside.reset();  // not needed: cancelled (its Ceres solve ends within one iteration) and joined
     return Status::Ok();
   }
-  if (state.alongside) state.cone_solve->status = state.alongside->Join();
+  const bool alongside = state.alongside != nullptr;  // its solve ran on a second thread (report.json)
+  if (alongside) state.cone_solve->status = state.alongside->Join();
   state.alongside.reset();
+  // Alongside, the cone's rounds usually ran too; else they run here.
   std::unique_ptr<ConeSolve> cone = std::move(state.cone_solve);
   LOG(INFO) << "levelset: " << without.faces_below_min_angle << " faces cross below " << min_angle << "° (the worst at "
             << without.min_crossing_angle_deg << "°, " << without.foldovers << " fold-overs); "
@@ -236,11 +246,12 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
     cone->status = solve(state.cone, "cone_", &cone->solution, &cone->problem);
   }
   PQ_RETURN_IF_ERROR(cone->status);
-  PQ_RETURN_IF_ERROR(cone->problem->Rounds());
+  if (!cone->rounds_done) PQ_RETURN_IF_ERROR(cone->problem->Rounds());
   const LevelSetMetrics with = cone->problem->Measure();
   const bool kept = RoundsKey(with, min_angle) < RoundsKey(without, min_angle);
   solution->solver.update(cone->solution.solver);  // its solves' entries, all "cone_"
   solution->tip_cone = {{"tried", true}, {"kept", kept}, {"radius_h", state.cone.tip_cone_radius},
+                        {"alongside", alongside},
                         {"min_crossing_without", without.min_crossing_angle_deg},
                         {"min_crossing_with", with.min_crossing_angle_deg},
                         {"area_below_without", without.area_below_min_angle},
@@ -255,6 +266,31 @@ Status TryTipCone(MeshSolveState& state, const WholeSolve& solve, LevelSetSoluti
   solution->crossing_rounds_kept = cone->solution.crossing_rounds_kept;
   solution->metrics = with;
   return Status::Ok();
+}
+
+// Starts the cone's whole solve and its rounds (TryTipCone) on a thread of its own beside the
+// first layout's, if the layout may need it and levelset.alongside has a core to spare
+// (AlongsideBudget): from SolveOnMesh's start, or, where the budget was spent then (the poles'
+// layout solved alongside: levelset_poles.cc), again before the first layout's rounds, once
+// its joint solve has ended below min_angle or folded (else no rounds run and the cone is not
+// needed). It runs until TryTipCone joins it or, not needed, cancels it. Its rounds are the
+// ones TryTipCone would run: the same whichever thread runs them.
+void StartConeAlongside(MeshSolveState* state, const WholeSolve& solve, const LevelsetOptions& options) {
+  if (state->alongside != nullptr) return;
+  state->cone_solve = std::make_unique<ConeSolve>();
+  state->alongside = std::make_unique<AlongsideSolve>();
+  ConeSolve* cone = state->cone_solve.get();
+  const LevelsetOptions* cone_options = &state->cone;
+  const auto whole = [cone, cone_options, solve] {
+    PQ_RETURN_IF_ERROR(solve(*cone_options, "cone_", &cone->solution, &cone->problem));
+    PQ_RETURN_IF_ERROR(cone->problem->Rounds());
+    cone->rounds_done = true;
+    return Status::Ok();
+  };
+  if (!state->alongside->Start(whole, AlongsideBudget(options))) {
+    state->alongside.reset();
+    state->cone_solve.reset();
+  }
 }
 
 }  // namespace
@@ -302,19 +338,13 @@ Status SolveOnMesh(const SurfaceModel& s, const GuidanceField& g, const Levelset
     return (*problem)->SolveJoint();
   };
   const int tips = seams != nullptr ? static_cast<int>(FixedTips(*seams).size()) : 0;
-  if (MayRetryWithCone(options, tips)) {
-    state->cone_solve = std::make_unique<ConeSolve>();
-    state->alongside = std::make_unique<AlongsideSolve>();
-    ConeSolve* cone = state->cone_solve.get();
-    const LevelsetOptions* cone_options = &state->cone;
-    if (!state->alongside->Start([cone, cone_options, solve] { return solve(*cone_options, "cone_", &cone->solution, &cone->problem); },
-                                 AlongsideBudget(options))) {
-      state->alongside.reset();
-      state->cone_solve.reset();
-    }
-  }
+  const bool may_retry = MayRetryWithCone(options, tips);
+  if (may_retry) StartConeAlongside(state.get(), solve, options);
   PQ_RETURN_IF_ERROR(solve(state->plain, "", solution, &state->problem));
-  const auto rounds = [state, solve, solution]() {
+  const auto rounds = [state, solve, solution, may_retry, options]() {
+    const LevelSetMetrics joint = state->problem->Measure();
+    if (may_retry && (joint.foldovers > 0 || joint.faces_below_min_angle > 0) && !CrossingOutOfReach(joint))
+      StartConeAlongside(state.get(), solve, options);
     PQ_RETURN_IF_ERROR(state->problem->Rounds());
     solution->metrics = state->problem->Measure();
     return TryTipCone(*state, solve, solution);

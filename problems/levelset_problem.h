@@ -5,6 +5,7 @@
 
 #include <ceres/ceres.h>
 
+#include <functional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -36,8 +37,13 @@ class LevelSetProblem {
   void SetSolvePrefix(const std::string& prefix) { prefix_ = prefix; }
 
  private:
-  Status CrossingRounds(const std::string& name = "crossing_round_", double floor = kNoFloor);
+  // A copy of `other` that solves into `into` (its φ, ψ there): Rounds' floor way, run on a
+  // second thread beside the crossing rounds.
+  LevelSetProblem(const LevelSetProblem& other, LevelSetSolution* into);
+  Status CrossingRounds(const std::string& name = "crossing_round_", double floor = kNoFloor,
+                        const std::function<void()>& each_round = {});
   Status FloorRounds();
+  Status FloorWay();
   Status SolveLocal(const std::string& name, const std::vector<char>& live_phi, const std::vector<char>& live_psi,
                     double floor);
   // s_f of the transversality term on every face (crossing_barrier_residual.h).

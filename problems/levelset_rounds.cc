@@ -89,11 +89,13 @@ int RaiseCrossings(const SurfaceModel& s, const LevelSetGeometry& geo, const std
 // adds a fold-over is often undone by later ones (two_holes: ending the rounds at the first
 // such round left 1 fold-over, running them all leaves 0).
 // prefix: the solves' names in report.json; floor: with a CrossingBarrierResidual floor t
-// under every face of the live region (kNoFloor: none), as Rounds' last step uses it.
-Status LevelSetProblem::CrossingRounds(const std::string& prefix, double floor) {
+// under every face of the live region (kNoFloor: none), as Rounds' last step uses it;
+// each_round: called before each round (Rounds: to start its floor way alongside).
+Status LevelSetProblem::CrossingRounds(const std::string& prefix, double floor, const std::function<void()>& each_round) {
   LevelSetMetrics best = Measure();
   std::vector<double> best_phi = phi_, best_psi = psi_;
   for (int round = 0, since_best = 0; round < options_.crossing_rounds && since_best < kCrossingPatience; ++round) {
+    if (each_round) each_round();
     std::vector<char> live_phi, live_psi;
     if (RaiseCrossings(s_, geo_, phi_, psi_, min_angle_, &boost_, &live_phi, &live_psi) == 0) break;
     for (int v = 0; v < s_.num_vertices(); ++v) {  // a live plus copy frees its parameter
@@ -195,16 +197,43 @@ Status LevelSetProblem::FloorRounds() {
     GrowRings(s_, kFloorRings, &live);
     CloseOverCopies(&live);
     const double floor = lowest - std::max(kFloorMargin * (sin_min - lowest), kFloorMinMargin);
+    const std::vector<double> start_phi = phi_, start_psi = psi_;
     PQ_RETURN_IF_ERROR(SolveLocal("floor_round_" + std::to_string(round + 1), live, live, floor));
+    // A round that left φ and ψ as they were is a fixed point: the next round's floor, live
+    // region and terms are functions of φ and ψ alone (the boost is not touched here), so every
+    // further round would repeat it to the bit. (On the 962k-triangle Great Court × strain the
+    // last 4 of 10 floor rounds did; benchmarks/RESULTS.md, "The rounds' fixed point".)
+    const bool fixed_point = phi_ == start_phi && psi_ == start_psi;
     const LevelSetMetrics now = Measure();
     if (RoundsKey(now, options_.min_angle) <= RoundsKey(best, options_.min_angle)) {
       best = now, best_phi = phi_, best_psi = psi_, since_best = 0;
     } else {
       ++since_best;
     }
+    if (fixed_point) {
+      LOG(INFO) << "levelset: " << LogName(prefix_ + "floor_round_" + std::to_string(round + 1))
+                << " left φ and ψ as they were: the rounds after it would repeat it, none run";
+      break;
+    }
   }
   phi_ = best_phi;
   psi_ = best_psi;
+  return Status::Ok();
+}
+
+// The floor way of Rounds (4b, then the crossing rounds over a fixed floor) from this
+// problem's φ, ψ.
+Status LevelSetProblem::FloorWay() {
+  PQ_RETURN_IF_ERROR(FloorRounds());
+  if (Measure().faces_below_min_angle > 0) {  // the crossing rounds again, over a fixed floor
+    const std::vector<double> sines = SignedSines();
+    const double lowest = *std::min_element(sines.begin(), sines.end());
+    const double tolerated = std::sin((options_.min_angle - kTolerated) / kDegrees);
+    double floor = lowest - kFloorMinMargin;
+    if (lowest > tolerated) floor = std::max(floor, tolerated);
+    std::fill(boost_.begin(), boost_.end(), 1.0);
+    PQ_RETURN_IF_ERROR(CrossingRounds("polish_round_", floor));
+  }
   return Status::Ok();
 }
 
@@ -221,6 +250,10 @@ Status LevelSetProblem::FloorRounds() {
 // rounds end between that and min_angle (the Great Court with fewer φ iterations: 28.4°, with
 // no joint solve: 29.1°) the floor way often ends at or above min_angle (30.3°, 30.3°): the
 // better end is kept either way, so this costs time only where the crossing rounds fall short.
+// The floor way runs beside the crossing rounds where levelset.alongside has a core to spare
+// (on a copy of the problem from the joint solve's end): the same level sets, the rounds'
+// time the longer way's instead of the sum (benchmarks/RESULTS.md, "The floor way beside the
+// crossing rounds").
 Status LevelSetProblem::Rounds() {
   solution_->crossing_rounds_kept = "none";
   if (options_.crossing_rounds <= 0) return Status::Ok();
@@ -231,24 +264,29 @@ Status LevelSetProblem::Rounds() {
               << options_.min_angle << "° after the joint solve: out of the local rounds' reach, none run";
     return Status::Ok();
   }
-  const std::vector<double> joint_phi = phi_, joint_psi = psi_;
-  PQ_RETURN_IF_ERROR(CrossingRounds());
+  // The floor way starts from the joint solve's end whatever the crossing rounds do: on a copy,
+  // on a second thread beside them (levelset.alongside), in case they fall short; cancelled if
+  // they do not. It is the same on either thread, and the same as from this problem once the
+  // crossing rounds have ended (FloorRounds resets the boost and sets the hinge).
+  LevelSetSolution floor_solution;
+  floor_solution.phi = phi_;
+  floor_solution.psi = psi_;
+  LevelSetProblem floor_way(*this, &floor_solution);
+  AlongsideSolve ahead;  // after what its thread uses: destroyed (cancelled, joined) first
+  bool alongside = false;
+  // Tried again before each crossing round: a core may come free (the cone's solve alongside ending).
+  const std::function<void()> start = [&] {
+    if (!alongside) alongside = ahead.Start([&floor_way] { return floor_way.FloorWay(); }, AlongsideBudget(options_));
+  };
+  PQ_RETURN_IF_ERROR(CrossingRounds("crossing_round_", kNoFloor, start));
   solution_->crossing_rounds_kept = "boost";
   const LevelSetMetrics boosted = Measure();
   if (boosted.foldovers == 0 && boosted.faces_below_min_angle == 0) return Status::Ok();
   const std::vector<double> boosted_phi = phi_, boosted_psi = psi_;
-  phi_ = joint_phi;
-  psi_ = joint_psi;
-  PQ_RETURN_IF_ERROR(FloorRounds());
-  if (Measure().faces_below_min_angle > 0) {  // the crossing rounds again, over a fixed floor
-    const std::vector<double> sines = SignedSines();
-    const double lowest = *std::min_element(sines.begin(), sines.end());
-    const double tolerated = std::sin((options_.min_angle - kTolerated) / kDegrees);
-    double floor = lowest - kFloorMinMargin;
-    if (lowest > tolerated) floor = std::max(floor, tolerated);
-    std::fill(boost_.begin(), boost_.end(), 1.0);
-    PQ_RETURN_IF_ERROR(CrossingRounds("polish_round_", floor));
-  }
+  PQ_RETURN_IF_ERROR(alongside ? ahead.Join() : floor_way.FloorWay());
+  phi_ = floor_solution.phi;
+  psi_ = floor_solution.psi;
+  for (const auto& [name, summary] : floor_solution.solver.items()) solution_->solver[name] = summary;
   if (RoundsKey(Measure(), options_.min_angle) < RoundsKey(boosted, options_.min_angle)) {
     solution_->crossing_rounds_kept = "floor";
   } else {

@@ -23,6 +23,7 @@ namespace levelset_internal {
 int AlongsideBudget(const LevelsetOptions& options) {
   if (options.alongside == "true") return AlongsideSolve::kNoLimit;
   if (options.alongside == "false") return 0;
+  if (options.alongside == "1") return 1;
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency())) - 1;  // "auto"
 }
 

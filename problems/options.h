@@ -122,8 +122,9 @@ struct LevelsetOptions {
   double tip_cone_radius = 1.5;
   // Whether the second layouts that may be needed — that second solve, and the layout with
   // poles (levelset.poles) — are started on threads of their own as the first layout's begins:
-  // "true", "false" (one thread, each only once it is needed) or "auto" (as many at once as the
-  // machine has hardware threads less one: AlongsideBudget). One that turns out not to be needed
+  // "true", "false" (one thread, each only once it is needed), "auto" (as many at once as the
+  // machine has hardware threads less one: AlongsideBudget) or "1" (one at a time: auto's
+  // schedule on 2 cores, on any machine). One that turns out not to be needed
   // is cancelled as soon as that is known. Each solve is single-threaded on its own data, so the
   // outputs are the same either way (benchmarks/RESULTS.md, "The second layouts alongside the
   // first, cancelled when not needed").

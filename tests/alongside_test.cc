@@ -1,8 +1,9 @@
-// levelset.alongside: the second layouts that may be needed — the cone's retry
-// (problems/levelset_problem.cc, TryTipCone) and the layout with poles (levelset_poles.cc,
-// ChoosePoles) — started on a second thread beside the first layout's give the same level sets
-// as solving them afterwards, on one thread, only once they are needed: every Ceres summary
-// (initial and final cost to the last bit, iterations), every metric and the kept end identical.
+// levelset.alongside: the second layouts that may be needed — the cone's retry with its rounds
+// (problems/levelset_problem.cc, TryTipCone), the layout with poles (levelset_poles.cc,
+// ChoosePoles) and the rounds' floor way (levelset_rounds.cc, Rounds) — started on a second
+// thread beside the first layout's give the same level sets as solving them afterwards, on one
+// thread, only once they are needed: every Ceres summary (initial and final cost to the last
+// bit, iterations), every metric and the kept end identical.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,42 +25,49 @@
 namespace pqlayout {
 namespace {
 
-// report.json's levelset stage without its timings and peak memory (two problems at once hold more).
+// report.json's levelset stage without its timings, peak memory (two problems at once hold more)
+// and tip_cone.alongside (which thread solved the cone's retry).
 nlohmann::json WithoutSeconds(nlohmann::json j) {
   if (!j.is_object()) return j;
   nlohmann::json out = nlohmann::json::object();
   for (auto& [key, value] : j.items())
-    if (key.find("seconds") == std::string::npos && key != "peak_memory_mb") out[key] = WithoutSeconds(value);
+    if (key.find("seconds") == std::string::npos && key != "peak_memory_mb" && key != "alongside")
+      out[key] = WithoutSeconds(value);
   return out;
 }
 
-nlohmann::json LevelsetStage(const std::string& config_file, std::vector<std::string> sets, bool alongside,
-                             const std::string& dir) {
+// levelset.alongside = `alongside` ("true", "false", "1"), the run stopped after the level sets.
+nlohmann::json LevelsetStage(const std::string& config_file, std::vector<std::string> sets,
+                             const std::string& alongside, const std::string& dir, bool keep_alongside_key = false) {
   Config config;
-  sets.push_back(std::string("levelset.alongside=") + (alongside ? "true" : "false"));
+  sets.push_back("levelset.alongside=" + alongside);
   EXPECT_TRUE(LoadConfig(PQLAYOUT_SOURCE_DIR "/examples/" + config_file, sets, &config).ok());
   RunOptions run;
-  run.out_dir = testing::TempDir() + "/" + dir + (alongside ? "_alongside" : "_after");
+  run.out_dir = testing::TempDir() + "/" + dir + "_" + alongside;
   run.until = Stage::kLevelset;
   run.commit = false;
   nlohmann::json report;
   EXPECT_TRUE(RunPipeline(config, run, &report).ok());
-  return WithoutSeconds(report.at("stages").at("levelset"));
+  nlohmann::json stage = report.at("stages").at("levelset");
+  return keep_alongside_key ? stage : WithoutSeconds(stage);
 }
 
 // The Great Court's draft curvature layout (four branch points) asked for a 45° crossing that its
 // first layout does not reach (41.1°), so the cone's retry runs (45.5° after a crossing round:
 // at 40° its joint solve alone reached 43.5° and no round of the retry ran); two crossing
-// rounds keep it short.
+// rounds keep it short. Its first layout's crossing rounds fall short too, so their floor way
+// runs beside them (Rounds), and the cone's retry runs its own rounds on its thread.
 TEST(Alongside, TheConesRetryGivesTheSameLevelSets) {
   const std::vector<std::string> sets{"guidance.source=curvature", "levelset.draft=true", "levelset.min_angle=45",
                                       "levelset.crossing_rounds=2"};
-  const nlohmann::json alongside = LevelsetStage("great_court.yaml", sets, true, "cone");
-  const nlohmann::json after = LevelsetStage("great_court.yaml", sets, false, "cone");
+  const nlohmann::json alongside = LevelsetStage("great_court.yaml", sets, "true", "cone");
+  const nlohmann::json after = LevelsetStage("great_court.yaml", sets, "false", "cone");
   ASSERT_TRUE(alongside.contains("tip_cone"));
   EXPECT_TRUE(alongside.at("tip_cone").at("tried").get<bool>());
   EXPECT_TRUE(alongside.at("ceres").contains("cone_joint"));
   EXPECT_TRUE(alongside.at("ceres").contains("cone_crossing_round_1"));
+  EXPECT_TRUE(alongside.at("ceres").contains("floor_round_1"));
+  EXPECT_TRUE(alongside.at("ceres").contains("polish_round_1"));
   EXPECT_EQ(alongside.at("ceres").at("cone_joint"), after.at("ceres").at("cone_joint"));
   EXPECT_EQ(alongside, after);  // every summary, metric and the kept end
 }
@@ -69,14 +77,33 @@ TEST(Alongside, TheConesRetryGivesTheSameLevelSets) {
 // roof × curvature keeps its three (4.2° against 39.5°).
 TEST(Alongside, ThePolesLayoutGivesTheSameLevelSets) {
   const std::vector<std::string> l_shape{"guidance.source=strain", "levelset.draft=true"};
-  const nlohmann::json rejected = LevelsetStage("corpus/l_shape.yaml", l_shape, true, "poles_l_shape");
+  const nlohmann::json rejected = LevelsetStage("corpus/l_shape.yaml", l_shape, "true", "poles_l_shape");
   ASSERT_TRUE(rejected.contains("poles_not_kept"));
   EXPECT_TRUE(rejected.at("poles_not_kept").at("tried").get<bool>());
-  EXPECT_EQ(rejected, LevelsetStage("corpus/l_shape.yaml", l_shape, false, "poles_l_shape"));
+  EXPECT_EQ(rejected, LevelsetStage("corpus/l_shape.yaml", l_shape, "false", "poles_l_shape"));
   const std::vector<std::string> wavy{"guidance.source=curvature", "levelset.draft=true", "levelset.crossing_rounds=2"};
-  const nlohmann::json kept = LevelsetStage("corpus/wavy.yaml", wavy, true, "poles_wavy");
+  const nlohmann::json kept = LevelsetStage("corpus/wavy.yaml", wavy, "true", "poles_wavy");
   EXPECT_EQ(kept.at("poles").size(), 3u);
-  EXPECT_EQ(kept, LevelsetStage("corpus/wavy.yaml", wavy, false, "poles_wavy"));
+  EXPECT_EQ(kept, LevelsetStage("corpus/wavy.yaml", wavy, "false", "poles_wavy"));
+}
+
+// With one solve alongside at a time (levelset.alongside: 1, auto's schedule on 2 cores), the
+// poles' layout takes the second thread from the start, so the kept layout's cone (one branch
+// point) cannot start beside it; it starts once the poles' layout has ended, before the first
+// layout's rounds, and runs its own rounds there too (SolveOnMesh, StartConeAlongside): the same
+// level sets as one thread.
+TEST(Alongside, TheConeStartedOnceThePolesLayoutEndedGivesTheSameLevelSets) {
+  const std::vector<std::string> wavy{"guidance.source=curvature", "levelset.draft=true", "levelset.crossing_rounds=2"};
+  const nlohmann::json one = LevelsetStage("corpus/wavy.yaml", wavy, "1", "late_cone", true);
+  EXPECT_EQ(one.at("poles").size(), 3u);
+  ASSERT_TRUE(one.contains("tip_cone"));
+  EXPECT_TRUE(one.at("tip_cone").at("tried").get<bool>());
+  EXPECT_TRUE(one.at("tip_cone").at("alongside").get<bool>());
+  EXPECT_TRUE(one.at("ceres").contains("cone_polish_round_1"));
+  const nlohmann::json after = LevelsetStage("corpus/wavy.yaml", wavy, "false", "late_cone", true);
+  EXPECT_FALSE(after.at("tip_cone").at("alongside").get<bool>());
+  EXPECT_EQ(WithoutSeconds(one), WithoutSeconds(after));
+  EXPECT_EQ(levelset_internal::AlongsideSolve::Running(), 0);
 }
 
 // Both second layouts started and neither needed: the square dome × strain draft has a crown
@@ -85,12 +112,12 @@ TEST(Alongside, ThePolesLayoutGivesTheSameLevelSets) {
 // first layout's rounds run or once they end — and the level sets are those of one thread.
 TEST(Alongside, SecondLayoutsNotNeededAreCancelledWithTheSameLevelSets) {
   const std::vector<std::string> sets{"guidance.source=strain", "levelset.draft=true"};
-  const nlohmann::json alongside = LevelsetStage("corpus/dome_square.yaml", sets, true, "cancelled");
+  const nlohmann::json alongside = LevelsetStage("corpus/dome_square.yaml", sets, "true", "cancelled");
   ASSERT_TRUE(alongside.contains("poles_not_kept"));
   EXPECT_FALSE(alongside.at("poles_not_kept").at("tried").get<bool>());
   EXPECT_FALSE(alongside.contains("tip_cone"));  // the retry was not needed
   EXPECT_FALSE(alongside.at("ceres").contains("cone_joint"));
-  EXPECT_EQ(alongside, LevelsetStage("corpus/dome_square.yaml", sets, false, "cancelled"));
+  EXPECT_EQ(alongside, LevelsetStage("corpus/dome_square.yaml", sets, "false", "cancelled"));
   EXPECT_EQ(levelset_internal::AlongsideSolve::Running(), 0);  // every thread joined
 }
 
