@@ -99,8 +99,8 @@ KeyTable::KeyTable(Config* c) {
          "shearing), and the better end kept (0: no second solve)");
   Choice("levelset.alongside", &c->levelset.alongside, {"auto", "true", "false", "1"},
          "true: solve the second layouts that may be needed (the cone's retry where the layout has branch points, "
-         "the layout with poles where the guidance has crowns) on threads of their own beside the first from the "
-         "start, each cancelled as soon as it is known not to be needed (the same outputs; on 2 cores the level sets "
+         "the layout with poles where the guidance has crowns, the rounds' floor way where the crossing rounds may "
+         "fall short) on threads of their own beside the first, each cancelled as soon as it is known not to be needed (the same outputs; on 2 cores the level sets "
          "~0.7× as long where they are needed, ~1.1× where they are not); false: one thread, each only once needed; "
          "auto: as many at once as the hardware threads less one (one on 2 cores); 1: one at a time (auto's schedule on "
          "2 cores, on any machine)");
