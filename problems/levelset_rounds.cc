@@ -202,7 +202,8 @@ Status LevelSetProblem::FloorRounds() {
     // A round that left φ and ψ as they were is a fixed point: the next round's floor, live
     // region and terms are functions of φ and ψ alone (the boost is not touched here), so every
     // further round would repeat it to the bit. (On the 962k-triangle Great Court × strain the
-    // last 4 of 10 floor rounds did; benchmarks/RESULTS.md, "The rounds' fixed point".)
+    // last 4 of 10 floor rounds did; benchmarks/RESULTS.md, "The level-set rounds beside each
+    // other; the floor rounds' fixed point".)
     const bool fixed_point = phi_ == start_phi && psi_ == start_psi;
     const LevelSetMetrics now = Measure();
     if (RoundsKey(now, options_.min_angle) <= RoundsKey(best, options_.min_angle)) {
@@ -252,8 +253,8 @@ Status LevelSetProblem::FloorWay() {
 // better end is kept either way, so this costs time only where the crossing rounds fall short.
 // The floor way runs beside the crossing rounds where levelset.alongside has a core to spare
 // (on a copy of the problem from the joint solve's end): the same level sets, the rounds'
-// time the longer way's instead of the sum (benchmarks/RESULTS.md, "The floor way beside the
-// crossing rounds").
+// time the longer way's instead of the sum (benchmarks/RESULTS.md, "The level-set rounds
+// beside each other").
 Status LevelSetProblem::Rounds() {
   solution_->crossing_rounds_kept = "none";
   if (options_.crossing_rounds <= 0) return Status::Ok();
@@ -286,7 +287,7 @@ Status LevelSetProblem::Rounds() {
   PQ_RETURN_IF_ERROR(alongside ? ahead.Join() : floor_way.FloorWay());
   phi_ = floor_solution.phi;
   psi_ = floor_solution.psi;
-  for (const auto& [name, summary] : floor_solution.solver.items()) solution_->solver[name] = summary;
+  solution_->solver.update(floor_solution.solver);  // its solves' entries: floor_round_N, polish_round_N
   if (RoundsKey(Measure(), options_.min_angle) < RoundsKey(boosted, options_.min_angle)) {
     solution_->crossing_rounds_kept = "floor";
   } else {
