@@ -143,7 +143,7 @@ KeyTable::KeyTable(Config* c) {
   Number("planarize.weights.closeness", &pw.closeness, NonNegative(kMaxWeight), "vertices stay on the reference surface");
   Number("planarize.weights.boundary", &pw.boundary, NonNegative(kMaxWeight), "boundary vertices stay on the reference boundary");
   Number("planarize.weights.fairness", &pw.fairness, NonNegative(kMaxWeight), "second differences along the mesh polylines");
-  Number("planarize.weights.anchor", &pw.anchor, NonNegative(kMaxWeight), "vertices stay near where the layout put them");
+  Number("planarize.weights.anchor", &pw.anchor, NonNegative(kMaxWeight), "vertices stay near where the layout put them (raised with closeness, ×3 a round)");
   Number("planarize.weights.edge_length", &pw.edge_length, NonNegative(kMaxWeight),
          "× the planarity weight: no edge shrinks below a quarter of its extracted length (or of h); 0: off");
   Number("planarize.weights.orientation", &pw.orientation, NonNegative(kMaxWeight),

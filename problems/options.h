@@ -156,7 +156,7 @@ struct PlanarizeWeights {
   double closeness = 1.0;   // vertices on the reference surface
   double boundary = 1.0;    // boundary vertices on the reference boundary
   double fairness = 0.01;   // second differences along the mesh polylines
-  double anchor = 1.0;      // vertices stay near where the layout put them
+  double anchor = 1.0;      // vertices stay near where the layout put them (raised with closeness, ×3 a round)
   double edge_length = 0.0; // × planarity weight: no edge below ¼ of its extracted length (of h); 0: off
   double orientation = 1.0; // × the first round's planarity weight: no triangle turns over or flattens (< 5 % of its area); 0: off
 };

@@ -263,9 +263,17 @@ class GoalReached final : public ceres::IterationCallback {
 };
 
 // The current weights of the schedule: planarity, closeness and boundary are raised round by
-// round; anchor and fairness stay at their config values.
+// round, and the anchor with closeness (kClosenessRaise); fairness stays at its config value.
+// Why the anchor rides: planarity holds a vertex's place along the surface only through the
+// dihedral angles between its faces, which shrink with h (∝ h κ), so once the planarity weight
+// outgrows a fixed anchor (1e3 × 30ᵏ against 1) vertices slid metres along the reference and
+// folded their panels. The Great Court at h = 1.25 m × strain: 473 folded panels cut into
+// triangles and 432 edges closed over 8 passes, quads 0.95 → 0.67, vertices moved up to 6.8
+// edge lengths, 31 s; with the anchor raised as closeness is: 100 and 137, 0.95 → 0.87, 1.3
+// edge lengths, 4.3 s, δ and closeness within target (benchmarks/RESULTS.md, "Planarisation at
+// finer spacings"). Raised ×10 a round it held them too hard: closeness 0.09–0.13 m.
 struct RoundWeights {
-  double planarity, closeness, boundary;
+  double planarity, closeness, boundary, anchor;
 };
 
 // How each Levenberg–Marquardt step is solved. From kSchurFromFaces faces with a plane on,
@@ -310,7 +318,7 @@ void SetStepSolver(PlanarizeData* d, bool on_surface, ceres::Solver::Options* op
 void SolveRound(const ExtractedMesh& extracted, const ClosestPointQuery& query, const PlanarizeOptions& options,
                 double h, const RoundWeights& rw, bool on_surface, PlanarizeData* d, ceres::Solver::Summary* summary) {
   const auto& w = options.weights;
-  const double anchor_weight = w.anchor, fairness_weight = w.fairness;
+  const double anchor_weight = rw.anchor, fairness_weight = w.fairness;
   std::vector<double>& position = d->position;
   ceres::Problem problem;
   for (size_t f = 0; f < d->faces.size(); ++f) {
@@ -376,7 +384,7 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
   const auto& w = options.weights;
   // Weights (config values scale these): the residuals are all dimensionless (δ, metres / h),
   // so the same numbers work at every spacing h.
-  RoundWeights rw{kPlanarityStart * w.planarity, kClosenessStart * w.closeness, kClosenessStart * w.boundary};
+  RoundWeights rw{kPlanarityStart * w.planarity, kClosenessStart * w.closeness, kClosenessStart * w.boundary, w.anchor};
 
   SetPoints(data.position, &mesh);
   Measure(mesh, extracted->origin, query, report);
@@ -415,6 +423,7 @@ Status PlanarizeMesh(const SurfaceModel& reference, const PlanarizeOptions& opti
       rw.planarity *= kPlanarityRaise;
       rw.closeness *= kClosenessRaise;
       rw.boundary *= kClosenessRaise;
+      rw.anchor *= kClosenessRaise;
     }
   }
   MeasureDisplacement(mesh, data.start, report);

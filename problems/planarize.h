@@ -12,7 +12,9 @@
 //   1. on the surface: every vertex is a point OF the reference mesh (SurfaceManifold: steps
 //      in the triangle's plane, retracted onto the mesh), so closeness is exactly 0 however
 //      strong planarity gets. This is where a net that is not conjugate slides along the
-//      surface until it nearly is — metres, on the Great Court.
+//      surface until it nearly is; the anchor, raised with closeness (×3 a round), keeps that
+//      to about an edge length (left fixed, it let panels 1.25 m wide slide 6.8 edge lengths
+//      and fold: planarize.cc, RoundWeights).
 //   2. once a round improves δ max by less than half (on a triangle mesh a vertex pinned to
 //      the surface can only bend at the triangles' creases, where the solver stalls): the
 //      vertices are set free with the closeness and boundary residuals, weights 1e4 × config,

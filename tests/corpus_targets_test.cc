@@ -121,7 +121,20 @@ const CorpusCase kCases[] = {
     // until short edges were judged on the reference (2026-12-05).
     {"great_court_44k", "strain", {}, "great_court.yaml", {"surface.edge_length=0.8"}},
     {"great_court_44k", "curvature", {}, "great_court.yaml", {"surface.edge_length=0.8"}},
+    // Panels 1.25 m wide on the example's 1.5 m triangles (2026-12-07): with the planarisation's
+    // anchor fixed, its vertices slid up to 6.8 edge lengths and 473 panels folded (quads 0.95 →
+    // 0.67 after the repairs); with the anchor raised as closeness is, 1.3 and 0.87
+    // (ExpectPlanarisationKeepsTheGrid). Its 8-gon (1.6 h from a branch point) is a known miss.
+    {"great_court_h125", "strain", {{"interior_non_quads", 2}}, "great_court.yaml", {"layout.spacing=1.25"}},
 };
+
+// What the planarisation hands on is the layout's grid made planar, not another grid: most
+// quads kept and no vertex far from where the layout put it (the h = 1.25 m case above).
+void ExpectPlanarisationKeepsTheGrid(const nlohmann::json& report) {
+  const nlohmann::json& planarize = report.at("stages").at("planarize");
+  EXPECT_GE(planarize.at("quad_fraction").get<double>(), 0.8);
+  EXPECT_LE(planarize.at("max_displacement_edges").get<double>(), 2.0);
+}
 
 // Issue 19's targets for the Great Court at every size, stricter than the corpus': alignment
 // ≤ 6° where weight > 0.5, spacing CV ≤ 0.2, crossing ≥ 30°, no fold-over, quads ≥ 0.85 as
@@ -139,6 +152,18 @@ void ExpectValidAtThisSize(const CorpusCase& c, const nlohmann::json& report, do
   EXPECT_GE(st.at("extract").at("quad_fraction").get<double>(), 0.85);
   EXPECT_LE(st.at("planarize").at("planarity_max").get<double>(), 1e-3);
   EXPECT_LE(st.at("planarize").at("closeness_max").get<double>(), 0.02 * h);
+}
+
+// The planarisation's panel repairs (folded panels cut, short edges closed) are a warning
+// exactly where they left 0.1 or more of the extracted quad fraction (pipeline/stage_planarize.cc):
+// on the corpus the drops run from 0.01 to 0.34, so both sides of the line are exercised.
+void ExpectRepairWarningIffQuadsLost(const nlohmann::json& report) {
+  const nlohmann::json& st = report.at("stages");
+  const double drop = st.at("extract").at("quad_fraction").get<double>() - st.at("planarize").at("quad_fraction").get<double>();
+  bool warned = false;
+  for (const auto& w : report.at("warnings"))
+    warned |= w.get<std::string>().rfind("planarize: the panel repairs left ", 0) == 0;
+  EXPECT_EQ(warned, drop >= 0.1) << "quad fraction drop " << drop << ": " << report.at("warnings");
 }
 
 class CorpusTargets : public ::testing::TestWithParam<CorpusCase> {};
@@ -175,7 +200,9 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
     else EXPECT_LE(value, known->second) << name;
   }
   EXPECT_EQ(met, targets.at("met").get<int>());
+  ExpectRepairWarningIffQuadsLost(report);
   if (c.config == "great_court.yaml") ExpectValidAtThisSize(c, report, config.layout.spacing);
+  if (c.roof == "great_court_h125") ExpectPlanarisationKeepsTheGrid(report);
   if (c.roof == "dome_circular" && c.source == "strain")  // its triangles sit by the pole's cap
     for (const auto& t : targets.at("list"))
       if (t.at("name") == "interior_non_quads" && !t.at("met").get<bool>())
