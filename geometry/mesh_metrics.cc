@@ -35,4 +35,14 @@ TriangleQuality MeasureTriangleQuality(const TriMesh& mesh) {
   return q;
 }
 
+int CountFaces(const PolyMesh& mesh, int sides) {
+  int n = 0;
+  for (const auto f : mesh.faces()) n += static_cast<int>(mesh.valence(f)) == sides;
+  return n;
+}
+
+double QuadFraction(const PolyMesh& mesh) {
+  return mesh.n_faces() > 0 ? static_cast<double>(CountFaces(mesh, 4)) / mesh.n_faces() : 0.0;
+}
+
 }  // namespace pqlayout

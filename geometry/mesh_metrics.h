@@ -1,4 +1,5 @@
-// Quality measures of a triangle mesh, used in the surface stage's report and in tests.
+// Quality measures of a triangle mesh, used in the surface stage's report and in tests, and the
+// panel counts of a polygon mesh.
 #pragma once
 
 #include "geometry/mesh.h"
@@ -15,5 +16,9 @@ struct TriangleQuality {
 };
 
 TriangleQuality MeasureTriangleQuality(const TriMesh& mesh);
+
+// The faces with `sides` vertices, and the quads' share of all faces (0 for an empty mesh).
+int CountFaces(const PolyMesh& mesh, int sides);
+double QuadFraction(const PolyMesh& mesh);
 
 }  // namespace pqlayout

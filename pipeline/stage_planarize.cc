@@ -10,6 +10,7 @@
 #include "base/format_number.h"
 #include "geometry/panel_repair.h"
 #include "geometry/mesh_io.h"
+#include "geometry/mesh_metrics.h"
 #include "pipeline/stages.h"
 #include "problems/planarize.h"
 #include "report/figures.h"
@@ -31,11 +32,7 @@ Status WriteShellMesh(const PolyMesh& shell, double target_delta, const Eigen::V
 
 // The planarity figure's title: what the panels are, and how many planarisation folded.
 std::string PlanarityTitle(const PolyMesh& mesh, const PlanarizeReport& report) {
-  int quads = 0, triangles = 0;
-  for (const auto f : mesh.faces()) {
-    quads += mesh.valence(f) == 4;
-    triangles += mesh.valence(f) == 3;
-  }
+  const int quads = CountFaces(mesh, 4), triangles = CountFaces(mesh, 3);
   const int other = static_cast<int>(mesh.n_faces()) - quads - triangles;
   const auto count = [](int n, const std::string& one, const std::string& many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
@@ -66,9 +63,7 @@ constexpr int kMaxPasses = 8;
 // the drop is 0.00–0.35 and 9 of 22 runs warn; on the Great Court example 0.04–0.06.
 constexpr double kRepairDrop = 0.1;
 void WarnIfRepairsReshaped(const PolyMesh& extracted, const PlanarizeReport& report) {
-  int quads = 0;
-  for (const auto f : extracted.faces()) quads += extracted.valence(f) == 4;
-  const double before = extracted.n_faces() > 0 ? static_cast<double>(quads) / extracted.n_faces() : 0.0;
+  const double before = QuadFraction(extracted);
   if (!(before - report.quad_fraction >= kRepairDrop)) return;
   LOG(WARNING) << "planarize: the panel repairs left " << std::lround(100.0 * report.quad_fraction) << " % quads of the "
                << std::lround(100.0 * before) << " % extracted (" << report.folded_split

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "geometry/closest_point.h"
+#include "geometry/mesh_metrics.h"
 #include "geometry/polygon_shape.h"
 #include "solver/ceres_options.h"
 #include "geometry/planarity.h"
@@ -70,9 +71,7 @@ void MeasurePanelShapes(const PolyMesh& mesh, const std::vector<Eigen::Vector3d>
   report->folded_at = nlohmann::json::array();
   report->folded_face_ids.clear();
   report->n_faces = static_cast<int>(mesh.n_faces());
-  int quads = 0;
-  for (const auto f : mesh.faces()) quads += mesh.valence(f) == 4;
-  report->quad_fraction = mesh.n_faces() > 0 ? static_cast<double>(quads) / mesh.n_faces() : 0.0;
+  report->quad_fraction = QuadFraction(mesh);
   for (const auto f : mesh.faces()) {
     std::vector<int> ids;
     for (const auto v : mesh.fv_range(f)) ids.push_back(v.idx());

@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "geometry/mesh_metrics.h"
 #include "geometry/panel_repair.h"
 #include "geometry/planarity.h"
 #include "problems/planarize.h"
@@ -195,8 +196,12 @@ TEST(PanelRepair, AWarpedQuadIsCutAlongItsBetterDiagonal) {
   EXPECT_NEAR(delta, 0.3 / std::sqrt(4.18) / (0.5 * (std::sqrt(2.09) + std::sqrt(2.0))), 1e-12);  // 0.103
   EXPECT_EQ(SplitWarpedPanels(delta + 1e-9, &grid), 0);
   EXPECT_EQ(SplitWarpedPanels(0.0, &grid), 0);
+  EXPECT_EQ(QuadFraction(grid.mesh), 1.0);
   ASSERT_EQ(SplitWarpedPanels(0.05, &grid), 1);
   EXPECT_EQ(FaceSides(grid.mesh), (std::map<int, int>{{3, 2}, {4, 1}}));
+  EXPECT_EQ(CountFaces(grid.mesh, 3), 2);  // geometry/mesh_metrics.h, the planarize stage's counts
+  EXPECT_EQ(CountFaces(grid.mesh, 5), 0);
+  EXPECT_DOUBLE_EQ(QuadFraction(grid.mesh), 1.0 / 3.0);
   EXPECT_EQ(grid.mesh.n_vertices(), 6u);
   EXPECT_EQ(diagonal(grid), (std::set<int>{2, 4}));
   grid = warped({2.8, 1.0, 0.3}, {2.0, 0.0, 0.0});
