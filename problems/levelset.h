@@ -97,7 +97,7 @@ struct LevelSetSolution {
   LevelSetMetrics metrics;       // of the result
   nlohmann::json solver;         // Ceres summaries of the solves
   int working_faces = 0;         // triangles of the mesh the solve ran on
-  double working_edge = 0.0;     // the edge length it was made for, m (levelset.working_edge, 0.4 h, or the draft's)
+  double working_edge = 0.0;     // the edge length it was made for, m (levelset.working_edge, 0.4 h, the draft's or the budget's)
   std::string working_mesh = "reference";  // how that mesh was made (report.json's working_mesh)
   // Which re-solves for the crossing angle the result comes from: "none" (none needed or
   // levelset.crossing_rounds 0), "boost" (the crossing rounds), "floor" (the floor rounds,

@@ -27,17 +27,41 @@ constexpr double kDefaultWorkingEdge = 0.4;   // × h: CGAL lands near 12k trian
 // 1.5 m) got 8–10 working edges each and its planarisation failed (δ 0.3–1.0).
 constexpr double kDraftWorkingEdge = 0.8;
 constexpr double kDraftLoopEdges = 16.0;
+// levelset.working_triangles: the working mesh's edge is at least that of N equilateral
+// triangles covering the roof, √(4A / (√3 N)), so that a fine spacing on a large roof does not
+// multiply the level sets' unknowns by (0.4 h)⁻². The guidance and the surface have features of
+// a fixed size, which that many triangles resolve; the panels' size only enters through the
+// level lines drawn, and φ, ψ are linear on each triangle, so several lines may cross one.
+// Measured on the Great Court at h = 1.25 m (reference at 0.5 h, strain): 71.4k working triangles
+// (0.4 h) took 134 s of level sets, 12.1k (edge 1.2 m) 8.6 s, every target met by both, planarised
+// quads 0.894 / 0.889, compliance after stiffen 23,764 / 23,251 J (benchmarks/RESULTS.md, "The
+// working mesh's triangle budget"). Like the draft, never coarser than 1/kDraftLoopEdges of the
+// shortest boundary loop.
+constexpr double kEquilateralArea = 0.43301270189221932;  // √3 / 4: an equilateral triangle of edge 1
+
+// The edge at most `edge` (never below `floor`) that gives every boundary loop kDraftLoopEdges edges.
+double WithinLoops(const SurfaceModel& s, double edge, double floor) {
+  for (const auto& loop : s.boundary_loops()) edge = std::min(edge, loop.length / kDraftLoopEdges);
+  return std::max(edge, floor);
+}
 
 double WorkingEdge(const SurfaceModel& s, const LevelsetOptions& options, double h, const std::string& prefix) {
   if (options.working_edge > 0.0) return options.working_edge;
-  if (!options.draft) return kDefaultWorkingEdge * h;
-  double edge = kDraftWorkingEdge * h;
-  for (const auto& loop : s.boundary_loops()) edge = std::min(edge, loop.length / kDraftLoopEdges);
-  edge = std::max(edge, kDefaultWorkingEdge * h);
-  LOG(INFO) << prefix << "draft: φ, ψ on a working mesh of edge " << edge << " m (" << kDraftWorkingEdge
-            << " h, at most 1/" << kDraftLoopEdges << " of the shortest boundary loop; a quick look, not the final "
-            << "layout: README \"Draft runs\")";
-  return edge;
+  const double fine = kDefaultWorkingEdge * h;
+  double edge = fine;
+  if (options.draft) {
+    edge = WithinLoops(s, kDraftWorkingEdge * h, fine);
+    LOG(INFO) << prefix << "draft: φ, ψ on a working mesh of edge " << edge << " m (" << kDraftWorkingEdge
+              << " h, at most 1/" << kDraftLoopEdges << " of the shortest boundary loop; a quick look, not the final "
+              << "layout: README \"Draft runs\")";
+  }
+  if (options.working_triangles <= 0) return edge;
+  const double budget = WithinLoops(s, std::sqrt(s.total_area() / (kEquilateralArea * options.working_triangles)), fine);
+  if (budget <= edge) return edge;
+  LOG(INFO) << prefix << "φ, ψ on a working mesh of edge " << budget << " m (" << budget / h
+            << " h) instead of " << edge << " m: about " << options.working_triangles
+            << " triangles over the roof's " << s.total_area() << " m² (levelset.working_triangles)";
+  return budget;
 }
 constexpr int kRemeshIterations = 3;
 // A reference whose triangles are mostly slivers (a NURBS render mesh: strips of 0.2 × 2.7 m

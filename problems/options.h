@@ -140,8 +140,9 @@ struct LevelsetOptions {
   int crossing_rounds = 10;   // local re-solves raising transversality where the crossing is below min_angle, at most (0: none); floor rounds too where they fail
   bool seams = true;          // cut branch seams at guidance singularities and holes (φ, ψ jump across them)
   bool poles = true;          // a crown of the guidance (index +1) becomes a pole with a cap (needs seams)
-  double working_edge = 0.0;  // edge length of the mesh φ, ψ are solved on, m (0: 0.4 h, 0.8 h if draft); a finer reference is remeshed
+  double working_edge = 0.0;  // edge length of the mesh φ, ψ are solved on, m (0: 0.4 h, 0.8 h if draft, or working_triangles' edge); a finer reference is remeshed
   bool draft = false;         // a quick look: the working mesh's edge 0.8 h (≤ 1/16 of the shortest boundary loop) instead of 0.4 h
+  int working_triangles = 12000;  // the working edge at least that of this many equilateral triangles over the roof (0: 0.4 h however many)
 };
 
 struct ExtractOptions {

@@ -107,6 +107,12 @@ constexpr double kStationary = 1e-9;      // a normal gradient below this (max |
 constexpr double kBump = 0.1;             // … from which the run starts at a bump of this × the normal room
 constexpr int kLineSearchSteps = 4;       // Wolfe steps per line search: the projection changes along it, and
                                           // zooming longer for the curvature condition rarely paid (h = 3 m, 1.25 m)
+// A run that did not move at all is run again once with Ceres' default of Wolfe steps. The Great
+// Court at h = 1.25 m × curvature on a 0.5 h reference: the first line search found C/C₀ 0.9974
+// at a z-step of 0.011, tried 0.11 for the curvature condition, whose retraction failed, and
+// with its four steps spent Ceres reported the start (step 0, "Parameter tolerance reached"):
+// the stage ended at C × 1 with a warning.
+constexpr int kLongLineSearchSteps = 20;
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -289,13 +295,14 @@ Status Minimise(const Objective& F, double allowed, const StiffenOptions& option
     LOG(INFO) << "stiffen: the start could not be brought within δ " << allowed << " on every sub-quad; "
               << manifold.AdmitStart(z.data()) << " sub-quads keep their start's δ as their bound";
   Progress progress(F, manifold, options.stop_window, options.stop_gain);
+  int line_search_steps = kLineSearchSteps;
   for (int budget = options.max_iterations, run = 1; budget > 0; ++run) {
     ceres::GradientProblem problem(new BorrowedFunction(F), new BorrowedManifold(manifold));
     ceres::GradientProblemSolver::Options solver_options;
     solver_options.max_num_iterations = budget;
     solver_options.function_tolerance = 1e-6;
     solver_options.use_approximate_eigenvalue_bfgs_scaling = true;  // 13 % fewer evaluations at h = 1.25 m
-    solver_options.max_num_line_search_step_size_iterations = kLineSearchSteps;
+    solver_options.max_num_line_search_step_size_iterations = line_search_steps;
     solver_options.logging_type = ceres::SILENT;
     // Keeps every accepted step in z: Ceres writes the solution back only for a usable
     // summary, and a run that ends in a line-search failure (FAILURE) would otherwise restart
@@ -316,6 +323,13 @@ Status Minimise(const Objective& F, double allowed, const StiffenOptions& option
     report->stop = progress.converged() ? "converged" : summary.message;
     LOG(INFO) << "stiffen: L-BFGS run " << run << ": " << iterations << " iterations, objective "
               << progress.run_first() << " → " << progress.run_last() << " (" << summary.message << ")";
+    const bool stuck = iterations <= 1 && !(progress.RunGain() > 0.0);
+    if (stuck && line_search_steps == kLineSearchSteps && !progress.converged()) {
+      LOG(INFO) << "stiffen: run " << run << " did not move; again with " << kLongLineSearchSteps << " line-search steps";
+      line_search_steps = kLongLineSearchSteps;
+      continue;
+    }
+    line_search_steps = kLineSearchSteps;
     if (progress.converged() || (summary.termination_type == ceres::FAILURE && iterations <= 1)) break;
     if (progress.RunGain() < kRestartGain) break;
   }

@@ -1,8 +1,10 @@
 // The pqlayout executable as a user meets it: exit codes, one-line errors, no partial output
 // on failure, --set precedence, --until, --version, and report.json's contract keys.
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 
 #include "tests/test_cli.h"
@@ -177,6 +179,29 @@ TEST(Cli, DraftSolvesTheLevelSetsOnACoarserWorkingMesh) {
   // report.html says a draft is one, under its title.
   EXPECT_NE(ReadFile(dir + "/draft/report.html").find("<strong>draft</strong>"), std::string::npos);
   EXPECT_EQ(ReadFile(dir + "/full/report.html").find("<strong>draft</strong>"), std::string::npos);
+}
+
+// levelset.working_triangles: the working edge is at least that of N equilateral triangles
+// over the roof, √(4A / (√3 N)), never coarser than a 16th of the shortest boundary loop nor finer
+// than 0.4 h. The 10 × 6 m plane at h = 2 m (0.4 h = 0.8 m, the loop 32 m: at most 2 m): N = 60 →
+// 1.520 m; N = 20 → 2.632 m, held at 2 m by the loop; the default (12,000) and 0 leave 0.8 m.
+TEST(Cli, TheWorkingMeshHasATriangleBudget) {
+  const auto dir = testing::TempDir();
+  testing::WriteFile(dir, "plane.yaml", kPlaneConfig);
+  const auto levelset = [&](const std::string& name, const std::string& flags) {
+    const Result r = RunPqlayout(dir, "run plane.yaml -q --until levelset --set output.fields=false --out " + name + flags);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return ReadReport(dir + "/" + name)["stages"]["levelset"];
+  };
+  const double area = 60.0, sqrt3_4 = std::sqrt(3.0) / 4.0;
+  const auto budget60 = levelset("budget60", " --set levelset.working_triangles=60");
+  EXPECT_NEAR(budget60["working_edge"].get<double>(), std::sqrt(area / (sqrt3_4 * 60)), 1e-9);  // 1.520 m
+  EXPECT_GE(budget60["working_mesh_triangles"].get<int>(), 30);
+  EXPECT_LE(budget60["working_mesh_triangles"].get<int>(), 120);
+  EXPECT_NEAR(levelset("budget20", " --set levelset.working_triangles=20")["working_edge"].get<double>(), 2.0, 1e-9);
+  EXPECT_DOUBLE_EQ(levelset("nobudget", " --set levelset.working_triangles=0")["working_edge"].get<double>(), 0.8);
+  EXPECT_DOUBLE_EQ(levelset("default", "")["working_edge"].get<double>(), 0.8);
+  EXPECT_DOUBLE_EQ(levelset("pinned", " --set levelset.working_triangles=60 --set levelset.working_edge=0.9")["working_edge"].get<double>(), 0.9);
 }
 
 TEST(Cli, UntilStopsAfterTheStageAndRemovesStaleOutputs) {

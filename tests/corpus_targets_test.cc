@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <string>
@@ -37,6 +38,7 @@ struct CorpusCase {
   // The config: examples/corpus/<roof>.yaml, or this one with these overrides.
   std::string config = "";
   std::vector<std::string> sets = {};
+  bool issue19 = true;  // a Great Court case: issue 19's stricter targets too (ExpectValidAtThisSize)
 };
 
 const CorpusCase kCases[] = {
@@ -126,7 +128,27 @@ const CorpusCase kCases[] = {
     // 0.67 after the repairs); with the anchor raised as closeness is, 1.3 and 0.87
     // (ExpectPlanarisationKeepsTheGrid). Its 8-gon (1.6 h from a branch point) is a known miss.
     {"great_court_h125", "strain", {{"interior_non_quads", 2}}, "great_court.yaml", {"layout.spacing=1.25"}},
+    // The same panels on a reference at 0.5 h, as the surface stage's coarse-reference warning
+    // asks (71k triangles): solved on 0.4 h the level sets took 134 s on 71k working triangles;
+    // with levelset.working_triangles (2026-12-08) 14.5k triangles of 1.09 m, ~20 s
+    // (ExpectWorkingMeshWithinBudget). Its 8-gon is 1.0 h from a branch point; it crosses at
+    // 27.0° (0.07 % of the area below 30°; 27.4° on 0.4 h), so not issue 19's 30°.
+    {"great_court_h125_fine", "strain", {{"interior_non_quads", 2}}, "great_court.yaml",
+     {"layout.spacing=1.25", "surface.edge_length=0.625"}, false},
 };
+
+// levelset.working_triangles (default 12,000): a fine reference at a fine spacing is solved on
+// a working mesh of the budget's edge, √(4A / (√3 · 12,000)), not of 0.4 h, and CGAL's remesh
+// lands within 1.5× the budget's count (14.5k on the Great Court).
+void ExpectWorkingMeshWithinBudget(const nlohmann::json& report, double h) {
+  const nlohmann::json& levelset = report.at("stages").at("levelset");
+  const double area = report.at("stages").at("surface").at("area").get<double>();
+  const double budget = std::sqrt(area / (std::sqrt(3.0) / 4.0 * 12000.0));
+  EXPECT_GT(budget, 0.4 * h);
+  EXPECT_NEAR(levelset.at("working_edge").get<double>(), budget, 1e-9);
+  EXPECT_LE(levelset.at("working_mesh_triangles").get<int>(), 18000);
+  EXPECT_GE(levelset.at("working_mesh_triangles").get<int>(), 9000);
+}
 
 // What the planarisation hands on is the layout's grid made planar, not another grid: most
 // quads kept and no vertex far from where the layout put it (the h = 1.25 m case above).
@@ -201,8 +223,9 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   }
   EXPECT_EQ(met, targets.at("met").get<int>());
   ExpectRepairWarningIffQuadsLost(report);
-  if (c.config == "great_court.yaml") ExpectValidAtThisSize(c, report, config.layout.spacing);
-  if (c.roof == "great_court_h125") ExpectPlanarisationKeepsTheGrid(report);
+  if (c.config == "great_court.yaml" && c.issue19) ExpectValidAtThisSize(c, report, config.layout.spacing);
+  if (c.roof.rfind("great_court_h125", 0) == 0) ExpectPlanarisationKeepsTheGrid(report);
+  if (c.roof == "great_court_h125_fine") ExpectWorkingMeshWithinBudget(report, config.layout.spacing);
   if (c.roof == "dome_circular" && c.source == "strain")  // its triangles sit by the pole's cap
     for (const auto& t : targets.at("list"))
       if (t.at("name") == "interior_non_quads" && !t.at("met").get<bool>())
@@ -239,7 +262,8 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   // Since the joint solve starts from the initial guess (2026-12-06, seventeenth session) the
   // wavy roof's curvature layout keeps its first (floored, 27.4°) and the Great Court's at 44k
   // (curvature) and 112k (both) take the cone's, which reach 30° with the crossing rounds alone.
-  const bool coned = (c.roof == "great_court_112k") || (c.roof == "great_court_44k" && c.source == "curvature");
+  const bool coned = (c.roof == "great_court_112k") || (c.roof == "great_court_44k" && c.source == "curvature") ||
+                     c.roof == "great_court_h125_fine";
   const bool cone_tried = coned || (c.source == "strain" && c.roof == "hole_offcentre") ||
                           (c.source == "curvature" && c.roof == "wavy");
   const nlohmann::json& cone = stages.at("levelset").value("tip_cone", nlohmann::json());
@@ -249,9 +273,11 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   // With the seams' offsets rounded together (2026-12-06) the 112k Great Court's curvature
   // layout kept the floor rounds' end (30.3°). Since the joint solve starts from the initial
   // guess: the opening's curvature layout, the hypar's, the two openings' and the wavy roof's
-  // strain layouts and the wavy roof's curvature layout keep the floor rounds' end.
+  // strain layouts and the wavy roof's curvature layout keep the floor rounds' end; so does the
+  // Great Court's at h = 1.25 m on its fine reference, in the cone's retry (27.0° against 25.4°).
   const bool floored = (c.source == "curvature" && (c.roof == "hole_offcentre" || c.roof == "wavy")) ||
-                       (c.source == "strain" && (c.roof == "hypar" || c.roof == "two_holes" || c.roof == "wavy"));
+                       (c.source == "strain" && (c.roof == "hypar" || c.roof == "two_holes" || c.roof == "wavy" ||
+                                                 c.roof == "great_court_h125_fine"));
   const nlohmann::json& ceres = stages.at("levelset").at("ceres");
   const std::string kept_solves = coned ? "cone_" : "";  // the solves whose end the layout is
   EXPECT_EQ(ceres.contains("cone_joint"), cone_tried);
@@ -279,10 +305,10 @@ TEST_P(CorpusTargets, MeetsTheTargetsOrExplainsTheKnownMisses) {
   std::cout << c.roof << " × " << c.source << ": " << met << " of 11 targets met\n";
 }
 
-// The barrel vault's config with `sets`, run until `until`; its report.
-nlohmann::json RunBarrel(const std::vector<std::string>& sets, Stage until, const std::string& dir) {
+// An example's config (path under examples/) with `sets`, run until `until`; its report.
+nlohmann::json RunExample(const std::string& path, const std::vector<std::string>& sets, Stage until, const std::string& dir) {
   Config config;
-  EXPECT_TRUE(LoadConfig(PQLAYOUT_SOURCE_DIR "/examples/corpus/barrel.yaml", sets, &config).ok());
+  EXPECT_TRUE(LoadConfig(PQLAYOUT_SOURCE_DIR "/examples/" + path, sets, &config).ok());
   RunOptions run;
   run.out_dir = testing::TempDir() + "/" + dir;
   run.until = until;
@@ -290,6 +316,10 @@ nlohmann::json RunBarrel(const std::vector<std::string>& sets, Stage until, cons
   nlohmann::json report;
   EXPECT_TRUE(RunPipeline(config, run, &report).ok());
   return report;
+}
+
+nlohmann::json RunBarrel(const std::vector<std::string>& sets, Stage until, const std::string& dir) {
+  return RunExample("corpus/barrel.yaml", sets, until, dir);
 }
 
 // extract.brace_free_edges = all on the barrel vault (free gables, fixed long sides): the quads
@@ -326,6 +356,24 @@ TEST(FreeEdgeBracing, PaysOnTheBarrelsGablesAfterStiffen) {
               bracing.at("compliance_ratio").get<double>() * bracing.at("compliance_unbraced").get<double>(), 1e-6);
   EXPECT_LE(stiffen.at("planarity_max").get<double>(), config.planarize.target_delta);
   EXPECT_LE(stiffen.at("closeness_max").get<double>(), config.stiffen.tolerance);
+}
+
+// stiffen when its first line search ends on the start: the Great Court at h = 1.25 m ×
+// curvature on a 0.5 h reference found C/C₀ 0.9974 at a z-step of 0.011, reached for 0.11 (its
+// retraction failed) and, its four Wolfe steps spent, Ceres handed back the start ("Parameter
+// tolerance reached", step 0): the stage ended at C × 1.000. Such a run is run again with 20
+// steps (problems/stiffen.cc, kLongLineSearchSteps): × 0.596 at the stage's end, and within ten
+// iterations already ≤ 0.9 (measured 2026-12-08).
+TEST(StiffenAtFineSpacing, ARunThatDidNotMoveIsRunAgain) {
+  const nlohmann::json report =
+      RunExample("great_court.yaml",
+                 {"layout.spacing=1.25", "surface.edge_length=0.625", "guidance.source=curvature", "stiffen.max_iterations=10"},
+                 Stage::kStiffen, "stiffen_h125_fine_curvature");
+  const nlohmann::json& stiffen = report.at("stages").at("stiffen");
+  std::cout << "h = 1.25 m fine × curvature, stiffen: " << stiffen.at("compliance_ratio") << " in "
+            << stiffen.at("iterations") << " iterations\n";
+  EXPECT_LE(stiffen.at("compliance_ratio").get<double>(), 0.9);
+  EXPECT_LE(stiffen.at("planarity_max").get<double>(), report.at("config").at("planarize").at("target_delta").get<double>());
 }
 
 INSTANTIATE_TEST_SUITE_P(Roofs, CorpusTargets, ::testing::ValuesIn(kCases),
