@@ -134,8 +134,8 @@ KeyTable::KeyTable(Config* c) {
   Integer("levelset.working_triangles", &c->levelset.working_triangles, 0, 100000000,
           "the working mesh's edge is never shorter than that of this many equilateral triangles covering the roof, "
           "so a fine spacing on a large roof does not multiply the level sets' unknowns (the Great Court at h = 1.25 m: "
-          "12k triangles instead of 71k, level sets 16× faster, as stiff); 0: 0.4 h however many; ignored if "
-          "levelset.working_edge is set");
+          "14.5k triangles instead of 71k, level sets 134 → 28 s, compliance × 1.015); never coarser than 1.5 h; "
+          "0: 0.4 h however many; ignored if levelset.working_edge is set");
 
   Number("extract.corner_angle", &c->extract.corner_angle, Range{0.0, 180.0, true, true}, "boundary turning angle above which a vertex is a corner, degrees");
   Number("extract.min_edge", &c->extract.min_edge, Range{0.0, 1.0, false, true}, "edges shorter than min_edge × h are merged");

@@ -36,8 +36,11 @@ constexpr double kDraftLoopEdges = 16.0;
 // (0.4 h) took 134 s of level sets, 12.1k (edge 1.2 m) 8.6 s, every target met by both, planarised
 // quads 0.894 / 0.889, compliance after stiffen 23,764 / 23,251 J (benchmarks/RESULTS.md, "The
 // working mesh's triangle budget"). Like the draft, never coarser than 1/kDraftLoopEdges of the
-// shortest boundary loop.
+// shortest boundary loop, and never coarser than kBudgetMaxEdge × h: at h = 0.75 m its 1.09 m
+// (1.45 h) met every target (quads 0.975 as extracted, 0.866 planarised); N = 1 at h = 1 m gave
+// 8.7 m (8.7 h) and planarisation cut 1,047 folded panels (quads 0.96 → 0.58).
 constexpr double kEquilateralArea = 0.43301270189221932;  // √3 / 4: an equilateral triangle of edge 1
+constexpr double kBudgetMaxEdge = 1.5;                     // × h
 
 // The edge at most `edge` (never below `floor`) that gives every boundary loop kDraftLoopEdges edges.
 double WithinLoops(const SurfaceModel& s, double edge, double floor) {
@@ -56,7 +59,8 @@ double WorkingEdge(const SurfaceModel& s, const LevelsetOptions& options, double
               << "layout: README \"Draft runs\")";
   }
   if (options.working_triangles <= 0) return edge;
-  const double budget = WithinLoops(s, std::sqrt(s.total_area() / (kEquilateralArea * options.working_triangles)), fine);
+  const double wanted = std::sqrt(s.total_area() / (kEquilateralArea * options.working_triangles));
+  const double budget = WithinLoops(s, std::min(wanted, kBudgetMaxEdge * h), fine);
   if (budget <= edge) return edge;
   LOG(INFO) << prefix << "φ, ψ on a working mesh of edge " << budget << " m (" << budget / h
             << " h) instead of " << edge << " m: about " << options.working_triangles

@@ -142,7 +142,7 @@ struct LevelsetOptions {
   bool poles = true;          // a crown of the guidance (index +1) becomes a pole with a cap (needs seams)
   double working_edge = 0.0;  // edge length of the mesh φ, ψ are solved on, m (0: 0.4 h, 0.8 h if draft, or working_triangles' edge); a finer reference is remeshed
   bool draft = false;         // a quick look: the working mesh's edge 0.8 h (≤ 1/16 of the shortest boundary loop) instead of 0.4 h
-  int working_triangles = 12000;  // the working edge at least that of this many equilateral triangles over the roof (0: 0.4 h however many)
+  int working_triangles = 12000;  // working edge ≥ that of this many equilateral triangles over the roof, ≤ 1.5 h (0: 0.4 h)
 };
 
 struct ExtractOptions {

@@ -182,9 +182,10 @@ TEST(Cli, DraftSolvesTheLevelSetsOnACoarserWorkingMesh) {
 }
 
 // levelset.working_triangles: the working edge is at least that of N equilateral triangles
-// over the roof, √(4A / (√3 N)), never coarser than a 16th of the shortest boundary loop nor finer
-// than 0.4 h. The 10 × 6 m plane at h = 2 m (0.4 h = 0.8 m, the loop 32 m: at most 2 m): N = 60 →
-// 1.520 m; N = 20 → 2.632 m, held at 2 m by the loop; the default (12,000) and 0 leave 0.8 m.
+// over the roof, √(4A / (√3 N)), never coarser than a 16th of the shortest boundary loop nor than
+// 1.5 h, never finer than 0.4 h. The 10 × 6 m plane at h = 2 m (0.4 h = 0.8 m, the loop 32 m: at
+// most 2 m): N = 60 → 1.520 m; N = 20 → 2.632 m, held at 2 m by the loop; the default (12,000)
+// and 0 leave 0.8 m.
 TEST(Cli, TheWorkingMeshHasATriangleBudget) {
   const auto dir = testing::TempDir();
   testing::WriteFile(dir, "plane.yaml", kPlaneConfig);
@@ -199,6 +200,9 @@ TEST(Cli, TheWorkingMeshHasATriangleBudget) {
   EXPECT_GE(budget60["working_mesh_triangles"].get<int>(), 30);
   EXPECT_LE(budget60["working_mesh_triangles"].get<int>(), 120);
   EXPECT_NEAR(levelset("budget20", " --set levelset.working_triangles=20")["working_edge"].get<double>(), 2.0, 1e-9);
+  // At h = 1 m the same 2.632 m is held at 1.5 h, below the loop's 2 m.
+  EXPECT_NEAR(levelset("budget20h1", " --set levelset.working_triangles=20 --set layout.spacing=1")["working_edge"].get<double>(),
+              1.5, 1e-9);
   EXPECT_DOUBLE_EQ(levelset("nobudget", " --set levelset.working_triangles=0")["working_edge"].get<double>(), 0.8);
   EXPECT_DOUBLE_EQ(levelset("default", "")["working_edge"].get<double>(), 0.8);
   EXPECT_DOUBLE_EQ(levelset("pinned", " --set levelset.working_triangles=60 --set levelset.working_edge=0.9")["working_edge"].get<double>(), 0.9);
