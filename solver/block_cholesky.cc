@@ -5,9 +5,12 @@
 #include <Eigen/OrderingMethods>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
+#include <thread>
 
 namespace pqlayout {
 
@@ -41,7 +44,15 @@ void BlockCholesky::Analyze() {
   graph.setFromTriplets(entries.begin(), entries.end());
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
   Eigen::AMDOrdering<int>()(graph, order);
-  perm_.assign(order.indices().data(), order.indices().data() + nodes_);
+  Structure(std::vector<int>(order.indices().data(), order.indices().data() + nodes_));
+  PlanSplit();
+  diagonal_.assign(nodes_, Block::Zero());
+  below_.assign(nodes_, {});
+  for (int j = 0; j < nodes_; ++j) below_[j].assign(rows_[j].size(), Block::Zero());
+}
+
+void BlockCholesky::Structure(std::vector<int> perm) {
+  perm_ = std::move(perm);
   inverse_.assign(nodes_, 0);
   for (int j = 0; j < nodes_; ++j) inverse_[perm_[j]] = j;
   // The column structures of L: column j holds A's rows below j and its children's rows below j;
@@ -62,10 +73,83 @@ void BlockCholesky::Analyze() {
   row_entries_.assign(nodes_, {});
   for (int k = 0; k < nodes_; ++k)
     for (int q = 0; q < static_cast<int>(rows_[k].size()); ++q) row_entries_[rows_[k][q]].push_back({k, q});
-  diagonal_.assign(nodes_, Block::Zero());
-  below_.assign(nodes_, {});
-  for (int j = 0; j < nodes_; ++j) below_[j].assign(rows_[j].size(), Block::Zero());
 }
+
+// The two threads' columns (block_cholesky.h). A column's cost is its block products (6 × 6 × 6
+// each): one per row of L below each of its left-looking updates, one solve per block of its
+// own. From the roots, the heaviest subtree in the set is replaced by its children (its root goes
+// above) while that helps: at each step the set is dealt out heaviest first to the lighter
+// thread, and the step with the least (above + larger share) is kept. Not split below
+// kMinSplitCost products or where that would save less than a tenth.
+void BlockCholesky::PlanSplit() {
+  constexpr double kMinSplitCost = 2e4;  // ~4 ms: a thread's start is then noise
+  constexpr int kMaxSteps = 4096;
+  columns_[0].clear(), columns_[1].clear();
+  std::vector<double> own(nodes_, 1.0), subtree(nodes_, 0.0);
+  std::vector<std::vector<int>> children(nodes_);
+  std::vector<int> roots;
+  for (int j = 0; j < nodes_; ++j) {
+    own[j] += static_cast<double>(rows_[j].size());
+    for (const auto& [k, p] : row_entries_[j]) own[j] += static_cast<double>(rows_[k].size() - p);
+  }
+  double total = 0.0;
+  for (int j = 0; j < nodes_; ++j) {  // children before parents
+    subtree[j] += own[j], total += own[j];
+    if (rows_[j].empty()) roots.push_back(j);
+    else subtree[rows_[j].front()] += subtree[j], children[rows_[j].front()].push_back(j);
+  }
+  if (total < kMinSplitCost) return;
+  const auto heavier = [&](int a, int b) { return subtree[a] != subtree[b] ? subtree[a] > subtree[b] : a < b; };
+  std::vector<int> set = roots, taken;  // taken: the columns moved above, in order
+  double above = 0.0, best = total;
+  size_t best_taken = 0;
+  for (int step = 0; step < kMaxSteps && !set.empty(); ++step) {
+    std::sort(set.begin(), set.end(), heavier);
+    double share[2] = {0.0, 0.0};
+    for (const int r : set) share[share[1] < share[0] ? 1 : 0] += subtree[r];
+    if (above + std::max(share[0], share[1]) < best) best = above + std::max(share[0], share[1]), best_taken = taken.size();
+    const int heaviest = set.front();
+    set.erase(set.begin());
+    set.insert(set.end(), children[heaviest].begin(), children[heaviest].end());
+    taken.push_back(heaviest), above += own[heaviest];
+  }
+  if (best > 0.9 * total) return;
+  // Replay to the best step: its set dealt out as above, each subtree to one thread.
+  set = roots;
+  for (size_t t = 0; t < best_taken; ++t) {
+    set.erase(std::find(set.begin(), set.end(), taken[t]));
+    set.insert(set.end(), children[taken[t]].begin(), children[taken[t]].end());
+  }
+  std::sort(set.begin(), set.end(), heavier);
+  std::vector<int> thread_of(nodes_, -1);
+  double share[2] = {0.0, 0.0};
+  for (const int r : set) {
+    const int t = share[1] < share[0] ? 1 : 0;
+    share[t] += subtree[r];
+    std::vector<int> stack{r};
+    while (!stack.empty()) {
+      const int c = stack.back();
+      stack.pop_back();
+      thread_of[c] = t;
+      stack.insert(stack.end(), children[c].begin(), children[c].end());
+    }
+  }
+  // The columns above the subtrees (ascending: each after its descendants) to whichever thread
+  // has the less work so far; a thread waits where it needs a column of the other's.
+  for (int j = 0; j < nodes_; ++j) {
+    int t = thread_of[j];
+    if (t < 0) t = share[1] < share[0] ? 1 : 0, share[t] += own[j];
+    columns_[t].push_back(j);
+  }
+}
+
+struct BlockCholesky::Scratch {
+  explicit Scratch(int nodes) : slot(nodes, -1) {}
+  std::vector<int> slot;  // row node (new) → its place in the column being factored
+  std::vector<Block> work;
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;  // L's diagonal
+  int failed = -1;
+};
 
 Status BlockCholesky::Factorize(const Eigen::SparseMatrix<double>& A) {
   factorized_ = false;
@@ -94,13 +178,42 @@ Status BlockCholesky::Factorize(const Eigen::SparseMatrix<double>& A) {
     pattern_ = NodePattern(A, nodes);
     Analyze();
   }
-  std::vector<int> slot(nodes_, -1);  // row node (new) → its place in the column being factored
+  Scratch first(nodes_), second(nodes_);
+  bool ok = true;
+  if (threads_ >= 2 && !columns_[1].empty()) {
+    const std::unique_ptr<std::atomic<char>[]> done(new std::atomic<char>[nodes_]);
+    for (int j = 0; j < nodes_; ++j) done[j].store(0, std::memory_order_relaxed);
+    std::atomic<bool> stop{false};
+    bool second_ok = true;
+    std::thread worker([&] { second_ok = FactorColumns(A, columns_[1], &second, done.get(), &stop); });
+    ok = FactorColumns(A, columns_[0], &first, done.get(), &stop);
+    worker.join();
+    ok = ok && second_ok;
+  }
+  if (threads_ < 2 || columns_[1].empty() || !ok) {  // one thread, or a failure: the one that one thread finds first
+    first = Scratch(nodes_);
+    std::vector<int> all(nodes_);
+    for (int j = 0; j < nodes_; ++j) all[j] = j;
+    ok = FactorColumns(A, all, &first);
+  }
+  if (!ok) {
+    failed_row_ = kBlock * perm_[first.failed];
+    return Status::Internal("block Cholesky: not positive definite at node block " + std::to_string(perm_[first.failed]));
+  }
+  const double lo = std::min(first.lo, second.lo), hi = std::max(first.hi, second.hi);
+  rcond_ = nodes_ > 0 ? (lo / hi) * (lo / hi) : 0.0;
+  factorized_ = true;
+  return Status::Ok();
+}
+
+bool BlockCholesky::FactorColumns(const Eigen::SparseMatrix<double>& A, const std::vector<int>& columns, Scratch* s,
+                                  std::atomic<char>* done, std::atomic<bool>* stop) {
+  std::vector<int>& slot = s->slot;
+  std::vector<Block>& work = s->work;
   Block work_diagonal;
-  std::vector<Block> work;
-  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
-  for (int j = 0; j < nodes_; ++j) {
+  for (const int j : columns) {
     const std::vector<int>& rows = rows_[j];
-    for (int s = 0; s < static_cast<int>(rows.size()); ++s) slot[rows[s]] = s;
+    for (int r = 0; r < static_cast<int>(rows.size()); ++r) slot[rows[r]] = r;
     work_diagonal.setZero();
     work.assign(rows.size(), Block::Zero());
     // Column j of A, its lower part in the new numbering.
@@ -113,6 +226,11 @@ Status BlockCholesky::Factorize(const Eigen::SparseMatrix<double>& A) {
       }
     // Left-looking: minus L_*k L_jkᵀ for every column k < j with a block in row j.
     for (const auto& [k, p] : row_entries_[j]) {
+      if (done != nullptr)  // column k may be the other thread's: wait until it is finished
+        while (done[k].load(std::memory_order_acquire) == 0) {
+          if (stop->load(std::memory_order_relaxed)) return false;
+          std::this_thread::yield();
+        }
       const Block ljk_t = below_[k][p].transpose();
       work_diagonal.noalias() -= below_[k][p] * ljk_t;
       for (int q = p + 1; q < static_cast<int>(rows_[k].size()); ++q)
@@ -120,18 +238,18 @@ Status BlockCholesky::Factorize(const Eigen::SparseMatrix<double>& A) {
     }
     const Eigen::LLT<Block> llt(work_diagonal);
     if (llt.info() != Eigen::Success) {
-      failed_row_ = kBlock * old;
-      return Status::Internal("block Cholesky: not positive definite at node block " + std::to_string(old));
+      s->failed = j;
+      if (stop != nullptr) stop->store(true, std::memory_order_relaxed);
+      return false;
     }
     diagonal_[j] = llt.matrixL();
-    for (int s = 0; s < static_cast<int>(rows.size()); ++s)
-      below_[j][s] = diagonal_[j].triangularView<Eigen::Lower>().solve(work[s].transpose()).transpose();
-    for (int d = 0; d < kBlock; ++d) lo = std::min(lo, diagonal_[j](d, d)), hi = std::max(hi, diagonal_[j](d, d));
+    for (int r = 0; r < static_cast<int>(rows.size()); ++r)
+      below_[j][r] = diagonal_[j].triangularView<Eigen::Lower>().solve(work[r].transpose()).transpose();
+    for (int d = 0; d < kBlock; ++d) s->lo = std::min(s->lo, diagonal_[j](d, d)), s->hi = std::max(s->hi, diagonal_[j](d, d));
     for (const int i : rows) slot[i] = -1;
+    if (done != nullptr) done[j].store(1, std::memory_order_release);
   }
-  rcond_ = nodes_ > 0 ? (lo / hi) * (lo / hi) : 0.0;
-  factorized_ = true;
-  return Status::Ok();
+  return true;
 }
 
 Status BlockCholesky::Solve(const Eigen::VectorXd& b, Eigen::VectorXd* x) const {

@@ -83,6 +83,15 @@ int Slot(const Eigen::SparseMatrix<double>& K, int row, int column) {
   return static_cast<int>(std::lower_bound(begin, end, row) - K.innerIndexPtr());
 }
 
+// Whether K is compressed, size × size, with the pattern's structure (its values then only need
+// writing).
+bool HasPattern(const Eigen::SparseMatrix<double>& K, int size, const FramePattern& pattern) {
+  return K.isCompressed() && K.rows() == size && K.cols() == size &&
+         static_cast<size_t>(K.nonZeros()) == pattern.inner.size() && pattern.outer.size() == static_cast<size_t>(size) + 1 &&
+         std::equal(pattern.outer.begin(), pattern.outer.end(), K.outerIndexPtr()) &&
+         std::equal(pattern.inner.begin(), pattern.inner.end(), K.innerIndexPtr());
+}
+
 }  // namespace
 
 Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof, FramePattern* pattern) {
@@ -100,11 +109,16 @@ Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof, FrameP
   if (pattern != nullptr) topology = Topology(m, every_dof);
   const bool cached = pattern != nullptr && topology == pattern->ends;
   std::vector<Eigen::Triplet<double>> triplets;
-  std::vector<double> values;
-  std::vector<char> added;  // the cached path: a slot's first term is stored, later ones added (setFromTriplets' order)
+  double* values = nullptr;  // the cached path: K's values, a slot's first term stored, later ones added
+                             // (setFromTriplets' order)
   if (cached) {
-    values.assign(pattern->inner.size(), 0.0);
-    added.assign(values.size(), 0);
+    if (!HasPattern(s->K, size, *pattern))
+      s->K = Eigen::Map<const Eigen::SparseMatrix<double>>(size, size, static_cast<int>(pattern->inner.size()),
+                                                           pattern->outer.data(), pattern->inner.data(),
+                                                           std::vector<double>(pattern->inner.size()).data());
+    values = s->K.valuePtr();
+    std::fill(values, values + s->K.nonZeros(), 0.0);
+    pattern->added.assign(pattern->inner.size(), 0);
   } else {
     triplets.reserve(144 * m.members.size() + (every_dof ? 6 * n : 0));
   }
@@ -126,8 +140,8 @@ Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof, FrameP
           continue;
         }
         const int slot = pattern->slots[144 * e + 12 * p + q];
-        values[slot] = added[slot] ? values[slot] + K(p, q) : K(p, q);
-        added[slot] = 1;
+        values[slot] = pattern->added[slot] ? values[slot] + K(p, q) : K(p, q);
+        pattern->added[slot] = 1;
       }
     diagonal_max = std::max(diagonal_max, K.diagonal().cwiseAbs().maxCoeff());
   }
@@ -135,8 +149,6 @@ Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof, FrameP
   // diagonal entry (it then neither moves nor sets the factor's condition estimate).
   if (cached) {
     for (const int slot : pattern->restrained) values[slot] = diagonal_max;
-    s->K = Eigen::Map<const Eigen::SparseMatrix<double>>(size, size, static_cast<int>(values.size()),
-                                                         pattern->outer.data(), pattern->inner.data(), values.data());
     return Status::Ok();
   }
   if (every_dof)
@@ -165,7 +177,8 @@ Status AssembleFrame(const FrameModel& m, FrameSystem* s, bool every_dof, FrameP
 }
 
 Status SolveFrame(const FrameModel& m, FrameResult* r, FrameWorkspace* reuse) {
-  FrameSystem system;
+  FrameSystem own_system;
+  FrameSystem& system = reuse != nullptr ? reuse->system : own_system;
   PQ_RETURN_IF_ERROR(AssembleFrame(m, &system, true, reuse != nullptr ? &reuse->pattern : nullptr));
   const int n = static_cast<int>(m.nodes.size());
   const std::vector<int>& index = system.index;

@@ -73,6 +73,7 @@ struct FramePattern {
   std::vector<int> outer, inner;   // K's pattern
   std::vector<int> slots;          // 144 per member, row-major (p, q)
   std::vector<int> restrained;     // over every DOF: the slot of each restrained DOF's diagonal
+  std::vector<char> added;         // scratch: whether a slot holds its first term yet
 };
 
 // Checks the model (InvalidInput naming the member) and assembles K. pattern (optional): kept
@@ -81,10 +82,13 @@ Status AssembleFrame(const FrameModel& model, FrameSystem* system, bool every_do
                      FramePattern* pattern = nullptr);
 
 // What SolveFrame keeps across calls on frames of one topology (stiffen's evaluations): K's
-// pattern and the factor's symbolic analysis.
+// pattern, the factor's symbolic analysis, and the system's storage (K and the members' 12 × 12
+// matrices: 46 MB at 20k members, which allocated afresh cost the kernel's page zeroing, ~8 % of
+// a stiffen evaluation at h = 1 m).
 struct FrameWorkspace {
   FramePattern pattern;
   BlockCholesky factor;
+  FrameSystem system;
 };
 // Factors K over every DOF in 6 × 6 node blocks (solver/block_cholesky.h: 3–4× CHOLMOD's
 // simplicial factor on these frames, the same bits on every machine). reuse (optional): kept
