@@ -103,14 +103,24 @@ void BlockCholesky::PlanSplit() {
     else subtree[rows_[j].front()] += subtree[j], children[rows_[j].front()].push_back(j);
   }
   if (total < kMinSplitCost) return;
+  // Deals the subtrees of `set` out, heaviest first (ties by column), each to the thread with
+  // the less work so far; `share` the two threads' work; each subtree's thread, if asked.
   const auto heavier = [&](int a, int b) { return subtree[a] != subtree[b] ? subtree[a] > subtree[b] : a < b; };
+  double share[2];
+  const auto deal = [&](std::vector<int>& set, std::vector<int>* root_thread) {
+    std::sort(set.begin(), set.end(), heavier);
+    share[0] = share[1] = 0.0;
+    for (const int r : set) {
+      const int t = share[1] < share[0] ? 1 : 0;
+      share[t] += subtree[r];
+      if (root_thread != nullptr) root_thread->push_back(t);
+    }
+  };
   std::vector<int> set = roots, taken;  // taken: the columns moved above, in order
   double above = 0.0, best = total;
   size_t best_taken = 0;
   for (int step = 0; step < kMaxSteps && !set.empty(); ++step) {
-    std::sort(set.begin(), set.end(), heavier);
-    double share[2] = {0.0, 0.0};
-    for (const int r : set) share[share[1] < share[0] ? 1 : 0] += subtree[r];
+    deal(set, nullptr);
     if (above + std::max(share[0], share[1]) < best) best = above + std::max(share[0], share[1]), best_taken = taken.size();
     const int heaviest = set.front();
     set.erase(set.begin());
@@ -124,17 +134,14 @@ void BlockCholesky::PlanSplit() {
     set.erase(std::find(set.begin(), set.end(), taken[t]));
     set.insert(set.end(), children[taken[t]].begin(), children[taken[t]].end());
   }
-  std::sort(set.begin(), set.end(), heavier);
-  std::vector<int> thread_of(nodes_, -1);
-  double share[2] = {0.0, 0.0};
-  for (const int r : set) {
-    const int t = share[1] < share[0] ? 1 : 0;
-    share[t] += subtree[r];
-    std::vector<int> stack{r};
+  std::vector<int> root_thread, thread_of(nodes_, -1);
+  deal(set, &root_thread);
+  for (size_t i = 0; i < set.size(); ++i) {
+    std::vector<int> stack{set[i]};
     while (!stack.empty()) {
       const int c = stack.back();
       stack.pop_back();
-      thread_of[c] = t;
+      thread_of[c] = root_thread[i];
       stack.insert(stack.end(), children[c].begin(), children[c].end());
     }
   }
